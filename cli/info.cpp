@@ -1,0 +1,93 @@
+// billiard info SHAPE: exact geometry of a shape file.
+#include "commands.hpp"
+#include "options.hpp"
+
+#include "billiards/geometry.hpp"
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include <iostream>
+
+namespace billiards::cli {
+
+namespace {
+
+nlohmann::json pieces_json(const geometry::Region2& region) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const geometry::Loop* loop : region.loops()) {
+    for (std::size_t i = 0; i < loop->pieces.size(); ++i) {
+      const auto& p = loop->pieces[i];
+      nlohmann::json j = {{"kind", geometry::kind_of(p)},
+                          {"line", loop->where[i].line},
+                          {"loop", loop == &region.outer ? "boundary" : "hole"},
+                          {"length", geometry::length_of(p)},
+                          {"curvature", geometry::curvature_of(p)},
+                          {"from", {geometry::source_of(p).x(), geometry::source_of(p).y()}},
+                          {"to", {geometry::target_of(p).x(), geometry::target_of(p).y()}}};
+      if (const auto* a = std::get_if<geometry::Arc>(&p)) {
+        j["center"] = {a->center.x(), a->center.y()};
+        j["radius"] = a->radius;
+        j["sweep"] = a->sweep;
+      }
+      out.push_back(j);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json shape_info(const geometry::Shape& shape) {
+  const auto m = geometry::measures_of(shape.region);
+  const auto& T = m.boundary_tensor;
+  return {{"name", shape.region.name},
+          {"file", shape.region.origin.file},
+          {"dimension", m.dimension},
+          {"V", m.volume},
+          {"S", m.surface},
+          {"mean_free_path", geometry::mean_free_path(m)},
+          {"boundary_tensor", {{T(0, 0), T(0, 1)}, {T(1, 0), T(1, 1)}}},
+          {"bbox", {{m.bbox_lo(0), m.bbox_lo(1)}, {m.bbox_hi(0), m.bbox_hi(1)}}},
+          {"parameters", shape.parameters},
+          {"holes", shape.region.holes.size()},
+          {"pieces", pieces_json(shape.region)}};
+}
+
+void add_info(CLI::App& app) {
+  auto* cmd = app.add_subcommand("info", "Exact geometry of a shape: V, S, mean free path, ...");
+  struct Args {
+    std::string shape;
+    bool json = false;
+    std::vector<std::string> set;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("shape", args->shape, "shape file (YAML)")->required();
+  cmd->add_flag("--json", args->json, "print JSON instead of text");
+  add_set_option(cmd, args->set);
+  cmd->callback([args] {
+    const auto shape = geometry::load_shape(args->shape, parse_overrides(args->set));
+    const auto info = shape_info(shape);
+    if (args->json) {
+      std::cout << info.dump(2) << "\n";
+      return;
+    }
+    if (!shape.description.empty()) fmt::print("{}\n\n", shape.description);
+    fmt::print("shape            {} ({})\n", info["name"].get<std::string>(), args->shape);
+    fmt::print("area V           {:.15g}\n", info["V"].get<double>());
+    fmt::print("perimeter S      {:.15g}\n", info["S"].get<double>());
+    fmt::print("mean free path   {:.15g}   (lambda = pi V / S)\n", info["mean_free_path"].get<double>());
+    const auto& T = info["boundary_tensor"];
+    fmt::print("boundary tensor  [[{:.12g}, {:.12g}], [{:.12g}, {:.12g}]]   (int n n^T dS)\n",
+               T[0][0].get<double>(), T[0][1].get<double>(), T[1][0].get<double>(), T[1][1].get<double>());
+    const auto& b = info["bbox"];
+    fmt::print("bounding box     [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]\n", b[0][0].get<double>(),
+               b[1][0].get<double>(), b[0][1].get<double>(), b[1][1].get<double>());
+    fmt::print("pieces           {} ({} holes)\n", info["pieces"].size(), shape.region.holes.size());
+    for (const auto& p : info["pieces"])
+      fmt::print("  line {:>4}  {:<7}  length {:<12.8g}  curvature {:+.6g}\n", p["line"].get<int>(),
+                 p["kind"].get<std::string>(), p["length"].get<double>(), p["curvature"].get<double>());
+  });
+}
+
+}  // namespace billiards::cli

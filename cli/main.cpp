@@ -1,0 +1,25 @@
+// billiard: the command-line program.  Each subcommand lives in its own file.
+#include "commands.hpp"
+
+#include "billiards/geometry/input_error.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+int main(int argc, char** argv) {
+  CLI::App app{"billiard: exact geometry, dynamics and energy diffusion of billiards"};
+  app.require_subcommand(1);
+  billiards::cli::add_info(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const billiards::InputError& e) {
+    fmt::print(stderr, "billiard: error: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "billiard: error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,29 @@
+// Options shared by several subcommands.
+#pragma once
+
+#include "billiards/geometry/expression.hpp"
+#include "billiards/geometry/shape_file.hpp"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace billiards::cli {
+
+/// `--set NAME=VALUE` (repeatable): overrides a shape or scene parameter.
+inline void add_set_option(CLI::App* cmd, std::vector<std::string>& target) {
+  cmd->add_option("--set", target, "override a parameter: NAME=VALUE (an expression); repeatable");
+}
+
+inline Overrides parse_overrides(const std::vector<std::string>& assignments) {
+  Overrides out;
+  for (const auto& a : assignments) add_override(out, a);
+  return out;
+}
+
+/// The JSON block `billiard info --json` prints.
+nlohmann::json shape_info(const geometry::Shape& shape);
+
+}  // namespace billiards::cli

@@ -1,0 +1,70 @@
+// The verbs of the dynamics: `collision` (the next wall a flight leaves through), `bounce`
+// (specular reflection).  `collision` is generic over the flight model (flight.hpp).
+#pragma once
+
+#include "billiards/dynamics/flight.hpp"
+#include "billiards/dynamics/table.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+namespace billiards::dynamics {
+
+namespace detail {
+
+/// Tries one wall; keeps it if it is hit before the best so far.
+template <class Flight>
+inline void try_wall(const Table& table, const Flight& flight, const typename Flight::State& s,
+                     int wall, Hit& best) {
+  const std::size_t ns = table.segments().size();
+  const double t = std::size_t(wall) < ns ? flight.exit_time(s, table.segments()[wall], best.t)
+                                          : flight.exit_time(s, table.arcs()[wall - ns], best.t);
+  if (t < best.t) {
+    best.t = t;
+    best.wall = wall;
+  }
+}
+
+/// Straight flights through the grid (Amanatides–Woo traversal): walls are tested cell by
+/// cell and the search stops at the first cell that contains the best hit so far.
+Hit grid_collision(const Table& table, const FreeFlight& flight, const State& s, double t_end);
+
+}  // namespace detail
+
+/// The first wall the flight from `s` leaves the region through, before `t_end`.
+/// Hit::found() is false when no wall is met: for a particle inside a bounded region and
+/// t_end = never, that means it has escaped.
+template <class Flight>
+Hit collision(const Table& table, const Flight& flight, const typename Flight::State& s,
+              double t_end = never) {
+  Hit best;
+  if constexpr (std::is_same_v<Flight, FreeFlight>) {
+    if (table.grid()) best = detail::grid_collision(table, flight, s, t_end);
+  }
+  if (!table.grid() || !std::is_same_v<Flight, FreeFlight>) {
+    best.t = t_end;
+    for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, flight, s, w, best);
+  }
+  if (!best.found()) return best;
+  best.point = flight.advance(s, best.t).x;
+  best.normal = table.normal_at(best.wall, best.point);
+  return best;
+}
+
+/// Specular reflection v' = v − 2(v·n)n.
+inline Vec2 reflect(const Vec2& v, const Vec2& n) { return v - 2 * v.dot(n) * n; }
+
+/// Rescales v to the speed² `v2`.  Flights that conserve energy restore it after every bounce
+/// against the value at the start, never against the previous bounce, so rounding cannot
+/// accumulate into a drift over 10⁹ bounces.
+inline void restore_speed(Vec2& v, double v2) { v *= std::sqrt(v2 / v.squaredNorm()); }
+
+/// Moves the particle to the collision and reflects it there.
+template <class Flight>
+void bounce(const Flight& flight, typename Flight::State& s, const Hit& hit) {
+  s = flight.advance(s, hit.t);
+  s.x = hit.point;
+  s.v = reflect(s.v, hit.normal);
+}
+
+}  // namespace billiards::dynamics

@@ -1,0 +1,44 @@
+// Flight models: how a particle moves between collisions.
+//
+// A flight model M is a small value type with
+//   using State = ...;                      // derives from dynamics::State
+//   State advance(const State& s, double t) const;            // state at time t ≥ s.t
+//   double exit_time(const State& s, const SegmentWall& w, double t_end) const;
+//   double exit_time(const State& s, const ArcWall& w, double t_end) const;
+//   static constexpr bool conserves_energy;
+// exit_time returns the first time t in [s.t, t_end] at which the trajectory starting from s
+// crosses the wall OUTWARD (from the region's side to the wall's side) at a point within the
+// wall's span, or +infinity if there is none.  A particle already (numerically) on the wall
+// side and moving outward collides at once (t = s.t); one on the wall side moving inward does
+// not collide with that wall (DynamO's "stable" rule).  A touch without crossing is not a
+// collision.
+//
+// The collision finder (collision.hpp) is generic over M, so a free scene compiles to the
+// straight-line code only: there is no drive in it, not even a branch.
+#pragma once
+
+#include "billiards/dynamics/state.hpp"
+#include "billiards/dynamics/walls.hpp"
+
+#include <limits>
+
+namespace billiards::dynamics {
+
+inline constexpr double never = std::numeric_limits<double>::infinity();
+
+/// Straight flight at constant velocity (no force).
+struct FreeFlight {
+  using State = dynamics::State;
+  static constexpr bool conserves_energy = true;
+
+  State advance(const State& s, double t) const {
+    State r = s;
+    r.x = s.x + s.v * (t - s.t);
+    r.t = t;
+    return r;
+  }
+  double exit_time(const State& s, const SegmentWall& w, double t_end) const;
+  double exit_time(const State& s, const ArcWall& w, double t_end) const;
+};
+
+}  // namespace billiards::dynamics

@@ -1,0 +1,55 @@
+// The billiard table as the dynamics sees it: the region's walls prepared for fast queries,
+// a uniform grid over them when there are many, and an independent point-in-region test.
+#pragma once
+
+#include "billiards/dynamics/walls.hpp"
+#include "billiards/geometry/pieces.hpp"
+
+#include <vector>
+
+namespace billiards::dynamics {
+
+class Table {
+ public:
+  /// Tables with more walls than this get a uniform grid for straight flights.
+  static constexpr std::size_t grid_threshold = 24;
+
+  explicit Table(const geometry::Region2& region);
+
+  const std::vector<SegmentWall>& segments() const { return segments_; }
+  const std::vector<ArcWall>& arcs() const { return arcs_; }
+  /// Walls are numbered segments first, then arcs.
+  std::size_t wall_count() const { return segments_.size() + arcs_.size(); }
+  bool is_arc(int wall) const { return wall >= int(segments_.size()); }
+  Vec2 normal_at(int wall, const Vec2& p) const;
+  /// The source line of a wall in the shape file (for reports).
+  const geometry::SourceRef& source_of(int wall) const { return sources_[wall]; }
+
+  /// Is p inside the region?  Crossing-number test, independent of the collision kernels;
+  /// points within `tolerance` of a wall count as inside.
+  bool contains(const Vec2& p) const;
+  double tolerance() const { return tolerance_; }
+  Vec2 lo() const { return lo_; }
+  Vec2 hi() const { return hi_; }
+
+  /// Uniform grid: cell (i, j) lists the walls whose bounding boxes meet it.
+  struct Grid {
+    Vec2 origin, cell;  // lower corner and cell size
+    int nx = 0, ny = 0;
+    std::vector<int> start;  // CSR offsets, size nx*ny + 1
+    std::vector<int> walls;
+  };
+  const Grid* grid() const { return grid_.nx ? &grid_ : nullptr; }
+
+ private:
+  void build_grid();
+  std::vector<SegmentWall> segments_;
+  std::vector<ArcWall> arcs_;
+  std::vector<geometry::SourceRef> sources_;
+  std::vector<std::pair<Vec2, Vec2>> boxes_;  // bounding box of each wall
+  Vec2 lo_, hi_;
+  double tolerance_ = 0;
+  Grid grid_;
+};
+
+}  // namespace billiards::dynamics

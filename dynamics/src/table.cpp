@@ -1,0 +1,130 @@
+#include "billiards/dynamics/table.hpp"
+
+#include "billiards/geometry/measures.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace billiards::dynamics {
+
+namespace {
+
+std::pair<Vec2, Vec2> box_of(const geometry::Piece& p) {
+  geometry::Region2 one;
+  one.outer.pieces = {p};
+  const auto m = geometry::measures_of(one);
+  return {m.bbox_lo, m.bbox_hi};
+}
+
+/// Signed number of times the horizontal ray from p to +∞ crosses the segment upward
+/// (half-open rule on y, so a vertex is counted once).
+int crossings(const SegmentWall& w, const Vec2& p) {
+  const bool up = w.a.y() <= p.y() && w.b.y() > p.y();
+  const bool down = w.b.y() <= p.y() && w.a.y() > p.y();
+  if (!up && !down) return 0;
+  const double side = geometry::cross(Vec2(w.b - w.a), Vec2(p - w.a));  // > 0: p left of a→b
+  return up ? (side > 0 ? 1 : 0) : (side < 0 ? -1 : 0);
+}
+
+/// Same for an arc: the ray meets its circle at most twice.
+int crossings(const ArcWall& w, const Vec2& p) {
+  const double dy = p.y() - w.center.y();
+  const double h2 = w.radius2 - dy * dy;
+  if (h2 <= 0) return 0;
+  const double h = std::sqrt(h2);
+  int n = 0;
+  for (const double sx : {-1.0, 1.0}) {
+    const Vec2 q(w.center.x() + sx * h, p.y());
+    if (q.x() <= p.x() || !w.within_span(q)) continue;
+    // Travelling counter-clockwise the circle goes up on its right half (sx = +1).
+    const int ccw_up = sx > 0 ? 1 : -1;
+    n += w.focusing ? ccw_up : -ccw_up;
+  }
+  return n;
+}
+
+/// Distance from p to the wall (exact for segments; arcs: to the circle, within span).
+double distance(const SegmentWall& w, const Vec2& p) {
+  const double s = std::clamp((p - w.a).dot(w.dir), 0.0, 1.0);
+  return (p - (w.a + s * (w.b - w.a))).norm();
+}
+double distance(const ArcWall& w, const Vec2& p) {
+  const Vec2 u = p - w.center;
+  const Vec2 on = w.center + w.radius * u / u.norm();
+  if (w.within_span(on)) return std::abs(u.norm() - w.radius);
+  return std::min((p - (w.center + w.from)).norm(), (p - (w.center + w.to)).norm());
+}
+
+}  // namespace
+
+Table::Table(const geometry::Region2& region) {
+  // Segments first, then arcs, each keeping its source line.
+  std::vector<std::pair<const geometry::Piece*, geometry::SourceRef>> arcs;
+  for (const geometry::Loop* loop : region.loops()) {
+    for (std::size_t i = 0; i < loop->pieces.size(); ++i) {
+      const auto& p = loop->pieces[i];
+      if (const auto* s = std::get_if<geometry::Segment>(&p)) {
+        segments_.emplace_back(*s);
+        sources_.push_back(loop->where[i]);
+        boxes_.push_back(box_of(p));
+      } else {
+        arcs.emplace_back(&p, loop->where[i]);
+      }
+    }
+  }
+  for (const auto& [p, src] : arcs) {
+    arcs_.emplace_back(std::get<geometry::Arc>(*p));
+    sources_.push_back(src);
+    boxes_.push_back(box_of(*p));
+  }
+  const auto m = geometry::measures_of(region);
+  lo_ = m.bbox_lo;
+  hi_ = m.bbox_hi;
+  tolerance_ = 1e-9 * (hi_ - lo_).maxCoeff();
+  if (wall_count() > grid_threshold) build_grid();
+}
+
+Vec2 Table::normal_at(int wall, const Vec2& p) const {
+  return is_arc(wall) ? arcs_[wall - segments_.size()].normal_at(p) : segments_[wall].normal;
+}
+
+bool Table::contains(const Vec2& p) const {
+  int winding = 0;
+  for (const auto& w : segments_) {
+    if (distance(w, p) <= tolerance_) return true;
+    winding += crossings(w, p);
+  }
+  for (const auto& w : arcs_) {
+    if (distance(w, p) <= tolerance_) return true;
+    winding += crossings(w, p);
+  }
+  return winding != 0;
+}
+
+void Table::build_grid() {
+  // About two walls per cell along the boundary: n walls spread over ~√n cells per side.
+  const Vec2 size = hi_ - lo_;
+  const double cells = 2.0 * double(wall_count());
+  const double h = std::sqrt(size.x() * size.y() / cells);
+  grid_.nx = std::clamp(int(std::ceil(size.x() / h)), 1, 4096);
+  grid_.ny = std::clamp(int(std::ceil(size.y() / h)), 1, 4096);
+  grid_.cell = Vec2(size.x() / grid_.nx, size.y() / grid_.ny);
+  grid_.origin = lo_;
+  std::vector<std::vector<int>> lists(std::size_t(grid_.nx) * grid_.ny);
+  for (std::size_t w = 0; w < boxes_.size(); ++w) {
+    // Pad by the span slack so walls touching a cell edge are listed on both sides.
+    const Vec2 pad = Vec2::Constant(tolerance_);
+    const Vec2 a = (boxes_[w].first - pad - lo_).cwiseQuotient(grid_.cell);
+    const Vec2 b = (boxes_[w].second + pad - lo_).cwiseQuotient(grid_.cell);
+    for (int i = std::max(0, int(a.x())); i <= std::min(grid_.nx - 1, int(b.x())); ++i)
+      for (int j = std::max(0, int(a.y())); j <= std::min(grid_.ny - 1, int(b.y())); ++j)
+        lists[std::size_t(j) * grid_.nx + i].push_back(int(w));
+  }
+  grid_.start.push_back(0);
+  for (const auto& l : lists) {
+    grid_.walls.insert(grid_.walls.end(), l.begin(), l.end());
+    grid_.start.push_back(int(grid_.walls.size()));
+  }
+}
+
+}  // namespace billiards::dynamics

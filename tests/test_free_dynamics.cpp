@@ -1,0 +1,99 @@
+// Free billiard dynamics on every bundled shape.
+#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/geometry.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+using namespace billiards;
+using dynamics::Vec2;
+
+namespace {
+
+std::vector<std::string> bundled_shapes() {
+  std::vector<std::string> out;
+  for (const auto& e : std::filesystem::directory_iterator(BILLIARDS_SOURCE_DIR "/shapes"))
+    if (e.path().extension() == ".yaml") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+struct RateCheck {
+  double measured, se, expected;
+  std::uint64_t collisions, escapes;
+};
+
+/// Collisions per unit time of a microcanonical ensemble.  Stationarity of the Liouville
+/// measure and Santaló's formula make E[collisions in [0, T]] = T v / λ exactly, for any
+/// shape and any T, ergodic or not.
+RateCheck collision_rate(const std::string& path, std::size_t particles, double collisions_each) {
+  const auto shape = geometry::load_shape(path);
+  const dynamics::Table table(shape.region);
+  const double lambda = geometry::mean_free_path(geometry::measures_of(shape.region));
+  const double T = collisions_each * lambda;  // speed 1
+  dynamics::RunOptions opt;
+  opt.record_times = {T};
+  opt.verify_every_flight = true;
+  dynamics::EnsembleResult res;
+  res.energies.resize(particles);
+  res.logs.resize(particles);
+  auto initial = [&](std::size_t i) {
+    dynamics::ParticleRng rng(2024, i);
+    return dynamics::sample_microcanonical(table, 1.0, rng);
+  };
+  dynamics::run_particles(table, dynamics::FreeFlight{}, initial, opt, 0, particles, 2, res);
+  double sum = 0, sum2 = 0;
+  for (const auto& l : res.logs) {
+    sum += double(l.collisions);
+    sum2 += double(l.collisions) * double(l.collisions);
+  }
+  const double n = double(particles), mean = sum / n, var = sum2 / n - mean * mean;
+  return {mean / T, std::sqrt(var / n) / T, 1 / lambda, res.collisions(), res.escapes()};
+}
+
+}  // namespace
+
+TEST_CASE("mean collision rate equals v / lambda on every bundled shape, with no escape") {
+  for (const auto& path : bundled_shapes()) {
+    INFO(path);
+    const auto r = collision_rate(path, 4000, 50);
+    CHECK(r.escapes == 0);
+    CHECK(r.collisions > 150000);
+    CHECK(std::abs(r.measured - r.expected) < 4 * r.se);
+    CHECK(r.se < 0.01 * r.expected);  // the test has teeth: a 4% error in λ would fail
+  }
+}
+
+TEST_CASE("energy is conserved by reflection over a million collisions") {
+  const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/clover.yaml");
+  const dynamics::Table table(shape.region);
+  dynamics::ParticleRng rng(7, 0);
+  const auto s = dynamics::sample_microcanonical(table, 1.0, rng);
+  dynamics::RunOptions opt;
+  opt.record_times = {1e6 * geometry::mean_free_path(geometry::measures_of(shape.region))};
+  double energy = 0;
+  const auto log = dynamics::simulate(table, dynamics::FreeFlight{}, s, opt, &energy);
+  CHECK(log.collisions > 900000);
+  CHECK_FALSE(log.escaped);
+  CHECK(std::abs(energy - 0.5) <= 4e-16 * 0.5);
+}
+
+TEST_CASE("grid traversal finds exactly the hits of the brute-force search") {
+  const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/wavy-1200.yaml");
+  const dynamics::Table table(shape.region);
+  REQUIRE(table.grid() != nullptr);
+  dynamics::ParticleRng rng(11, 0);
+  auto s = dynamics::sample_microcanonical(table, 1.0, rng);
+  for (int k = 0; k < 20000; ++k) {
+    const auto fast = dynamics::collision(table, dynamics::FreeFlight{}, s);
+    dynamics::Hit slow;
+    slow.t = dynamics::never;
+    for (int w = 0; w < int(table.wall_count()); ++w)
+      dynamics::detail::try_wall(table, dynamics::FreeFlight{}, s, w, slow);
+    REQUIRE(fast.wall == slow.wall);
+    REQUIRE(fast.t == slow.t);
+    dynamics::bounce(dynamics::FreeFlight{}, s, fast);
+  }
+}
