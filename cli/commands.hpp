@@ -3,8 +3,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include <string>
+
 namespace billiards::cli {
 
 void add_info(CLI::App& app);
+void add_run(CLI::App& app);
+
+/// The command line as typed, recorded in summary.json.
+void set_command_line(int argc, char** argv);
+const std::string& command_line();
 
 }  // namespace billiards::cli

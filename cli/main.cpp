@@ -6,10 +6,22 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+namespace billiards::cli {
+namespace {
+std::string the_command_line;
+}
+void set_command_line(int argc, char** argv) {
+  for (int i = 0; i < argc; ++i) the_command_line += (i ? " " : "") + std::string(argv[i]);
+}
+const std::string& command_line() { return the_command_line; }
+}  // namespace billiards::cli
+
 int main(int argc, char** argv) {
   CLI::App app{"billiard: exact geometry, dynamics and energy diffusion of billiards"};
   app.require_subcommand(1);
+  billiards::cli::set_command_line(argc, argv);
   billiards::cli::add_info(app);
+  billiards::cli::add_run(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

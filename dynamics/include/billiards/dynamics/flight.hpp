@@ -2,6 +2,7 @@
 //
 // A flight model M is a small value type with
 //   using State = ...;                      // derives from dynamics::State
+//   State start(const dynamics::State& s) const;              // a particle's initial state
 //   State advance(const State& s, double t) const;            // state at time t ≥ s.t
 //   double exit_time(const State& s, const SegmentWall& w, double t_end) const;
 //   double exit_time(const State& s, const ArcWall& w, double t_end) const;
@@ -31,6 +32,7 @@ struct FreeFlight {
   using State = dynamics::State;
   static constexpr bool conserves_energy = true;
 
+  State start(const State& s) const { return s; }
   State advance(const State& s, double t) const {
     State r = s;
     r.x = s.x + s.v * (t - s.t);

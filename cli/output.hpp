@@ -1,0 +1,34 @@
+// Writing results: every file of a run goes into a temporary directory that is renamed into
+// place only when complete, so a failed or interrupted run leaves no half-written output.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace billiards::cli {
+
+class OutputDir {
+ public:
+  explicit OutputDir(std::filesystem::path final_dir);
+  ~OutputDir();  // removes the temporary directory unless committed
+  OutputDir(const OutputDir&) = delete;
+  OutputDir& operator=(const OutputDir&) = delete;
+
+  std::filesystem::path path(const std::string& name) const { return tmp_ / name; }
+  void write_text(const std::string& name, const std::string& text) const;
+  void write_json(const std::string& name, const nlohmann::json& j) const;
+  /// A float64 matrix (rows × cols, row-major) in numpy's .npy format.
+  void write_npy(const std::string& name, const std::vector<double>& data, std::size_t rows,
+                 std::size_t cols) const;
+  /// Replaces the final directory with the temporary one.
+  void commit();
+
+ private:
+  std::filesystem::path final_, tmp_;
+  bool committed_ = false;
+};
+
+}  // namespace billiards::cli

@@ -1,0 +1,56 @@
+// Scene files (YAML): a shape, particles, a force and what to run.  The format is documented
+// in README.md ("Scene files").
+#pragma once
+
+#include "billiards/dynamics/state.hpp"
+#include "billiards/geometry/expression.hpp"
+#include "billiards/geometry/shape_file.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace billiards::dynamics {
+
+/// The force between collisions: none, a static uniform force F, or the uniform periodic
+/// drive F cos(ω t + phase) of the paper.
+struct Force {
+  enum class Kind { none, constant, periodic };
+  Kind kind = Kind::none;
+  Vec2 amplitude = Vec2::Zero();  // F
+  double omega = 0;               // ω (periodic only)
+  double phase = 0;               // (periodic only)
+  const char* name() const;
+};
+
+struct Scene {
+  std::string file;            // the scene file
+  std::string text;            // its text, copied into summary.json
+  geometry::Shape shape;
+  double mass = 1;
+  /// Microcanonical ensemble at `energy`, unless `initial_states` were read from a CSV file.
+  double energy = 0;
+  std::vector<State> initial_states;
+  std::string initial_csv;
+  Force force;
+  std::size_t particles = 0;
+  double time = 0;                   // end of the run
+  std::vector<double> record_times;  // increasing, last = time
+  std::uint64_t seed = 1;
+  std::string output_dir;
+};
+
+/// Command-line overrides of a scene.
+struct SceneOverrides {
+  Overrides set;  // --set NAME=VALUE: scene parameters first, then shape parameters
+  std::optional<std::size_t> particles;
+  std::optional<double> time, omega;
+  std::optional<std::uint64_t> seed;
+  std::optional<std::string> output_dir;
+};
+
+/// Reads a scene and its shape.  Throws InputError naming file and line.
+Scene load_scene(const std::string& path, const SceneOverrides& overrides = {});
+
+}  // namespace billiards::dynamics

@@ -1,0 +1,225 @@
+#include "billiards/dynamics/scene.hpp"
+
+#include "billiards/dynamics/table.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace billiards::dynamics {
+
+const char* Force::name() const {
+  switch (kind) {
+    case Kind::none: return "none";
+    case Kind::constant: return "constant";
+    case Kind::periodic: return "periodic";
+  }
+  return "?";
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+class SceneReader {
+ public:
+  SceneReader(std::string file, Expressions& expr) : file_(std::move(file)), expr_(expr) {}
+
+  int line(const YAML::Node& n) const { return n.Mark().line + 1; }
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& msg) const {
+    throw InputError(file_, line(n), msg);
+  }
+  void expect_keys(const YAML::Node& map, std::initializer_list<const char*> allowed,
+                   const std::string& what) const {
+    if (!map.IsMap()) fail(map, what + " must be a mapping");
+    const std::set<std::string> ok(allowed.begin(), allowed.end());
+    for (const auto& kv : map)
+      if (!ok.count(kv.first.as<std::string>()))
+        fail(kv.first, "unknown key '" + kv.first.as<std::string>() + "' in " + what);
+  }
+  YAML::Node required(const YAML::Node& map, const char* key, const std::string& what) const {
+    if (!map[key]) fail(map, what + " needs '" + key + "'");
+    return map[key];
+  }
+  double number(const YAML::Node& n) const {
+    if (!n.IsScalar()) fail(n, "expected a number or an expression");
+    return expr_.evaluate(n.Scalar(), file_, line(n));
+  }
+  double positive(const YAML::Node& n, const std::string& what) const {
+    const double v = number(n);
+    if (!(v > 0)) fail(n, what + " must be positive");
+    return v;
+  }
+  Vec2 vector(const YAML::Node& n) const {
+    if (!n.IsSequence() || n.size() != 2) fail(n, "expected a vector [x, y]");
+    return {number(n[0]), number(n[1])};
+  }
+  std::size_t count(const YAML::Node& n, const std::string& what) const {
+    const double v = number(n);
+    if (!(v >= 1) || v != std::floor(v) || v > 1e12) fail(n, what + " must be a whole number ≥ 1");
+    return std::size_t(v);
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+  Expressions& expr_;
+};
+
+Force read_force(const SceneReader& r, const YAML::Node& n) {
+  Force f;
+  if (!n || (n.IsScalar() && n.Scalar() == "none")) return f;
+  r.expect_keys(n, {"constant", "periodic"}, "'force'");
+  if (n.size() != 1) r.fail(n, "'force' is one of: none, constant, periodic");
+  if (const YAML::Node c = n["constant"]) {
+    r.expect_keys(c, {"amplitude"}, "a constant force");
+    f.kind = Force::Kind::constant;
+    f.amplitude = r.vector(r.required(c, "amplitude", "a constant force"));
+    return f;
+  }
+  const YAML::Node p = n["periodic"];
+  r.expect_keys(p, {"amplitude", "omega", "phase"}, "a periodic force");
+  f.kind = Force::Kind::periodic;
+  f.amplitude = r.vector(r.required(p, "amplitude", "a periodic force"));
+  f.omega = r.positive(r.required(p, "omega", "a periodic force"), "omega");
+  f.phase = p["phase"] ? r.number(p["phase"]) : 0.0;
+  return f;
+}
+
+/// Record times: a list, {every: dt} or {count: n} (evenly from 0 to the end time).  The end
+/// time is always recorded.
+std::vector<double> read_record(const SceneReader& r, const YAML::Node& n, double time) {
+  std::vector<double> t;
+  if (!n) {
+    t = {0.0};
+  } else if (n.IsSequence()) {
+    for (const auto& x : n) {
+      const double v = r.number(x);
+      if (v < 0 || (!t.empty() && v <= t.back())) r.fail(x, "record times must be ≥ 0 and increasing");
+      if (v < time) t.push_back(v);
+    }
+  } else {
+    r.expect_keys(n, {"every", "count"}, "'record'");
+    if (n["every"]) {
+      const double dt = r.positive(n["every"], "record.every");
+      for (double k = 0; k * dt < time * (1 - 1e-12); ++k) t.push_back(k * dt);
+    } else {
+      const std::size_t m = r.count(n["count"], "record.count");
+      for (std::size_t k = 0; k + 1 < m; ++k) t.push_back(time * double(k) / double(m - 1));
+    }
+  }
+  t.push_back(time);
+  return t;
+}
+
+std::vector<State> read_initial_csv(const std::string& path, const Table& table) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "cannot open initial-condition file");
+  std::vector<State> states;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#' || (number == 1 && line.find_first_of("xXvV") == 0)) continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream fields(line);
+    State s;
+    std::string extra;
+    if (!(fields >> s.x.x() >> s.x.y() >> s.v.x() >> s.v.y()) || (fields >> extra))
+      throw InputError(path, number, "expected four numbers: x, y, vx, vy");
+    if (!table.contains(s.x)) throw InputError(path, number, "particle is outside the region");
+    if (!(s.v.squaredNorm() > 0)) throw InputError(path, number, "particle has zero velocity");
+    states.push_back(s);
+  }
+  if (states.empty()) throw InputError(path, 0, "no particles in initial-condition file");
+  return states;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const SceneOverrides& ov) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, 0, "cannot open scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  Scene scene;
+  scene.file = path;
+  scene.text = buffer.str();
+  YAML::Node doc;
+  try {
+    doc = YAML::Load(scene.text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(path, e.mark.line + 1, "not valid YAML: " + e.msg);
+  }
+  Expressions expr;
+  const SceneReader r(path, expr);
+  if (!doc.IsMap()) throw InputError(path, 1, "a scene file is a YAML mapping");
+  r.expect_keys(doc, {"shape", "set", "parameters", "mass", "initial", "force", "run", "output"}, "a scene file");
+
+  // Scene parameters take the --set values that name them; the rest go to the shape, after
+  // the scene's own `set:` block.
+  Overrides shape_set;
+  if (const YAML::Node s = doc["set"]) {
+    if (!s.IsMap()) r.fail(s, "'set' must be a mapping NAME: value of shape parameters");
+    for (const auto& kv : s) shape_set[kv.first.as<std::string>()] = kv.second.Scalar();
+  }
+  if (const YAML::Node params = doc["parameters"]) {
+    if (!params.IsMap()) r.fail(params, "'parameters' must be a mapping NAME: value");
+    for (const auto& kv : params)
+      expr.define(kv.first.as<std::string>(), kv.second.Scalar(), path, r.line(kv.first), ov.set);
+  }
+  for (const auto& [name, value] : ov.set)
+    if (!expr.values().count(name)) shape_set[name] = value;
+
+  const YAML::Node shape_node = r.required(doc, "shape", "a scene file");
+  if (!shape_node.IsScalar()) r.fail(shape_node, "'shape' is the path of a shape file");
+  const fs::path shape_path = fs::path(path).parent_path() / shape_node.Scalar();
+  scene.shape = geometry::load_shape(shape_path.lexically_normal().string(), shape_set);
+  const Table table(scene.shape.region);
+
+  scene.mass = doc["mass"] ? r.positive(doc["mass"], "mass") : 1.0;
+  scene.force = read_force(r, doc["force"]);
+  if (ov.omega) {
+    if (scene.force.kind != Force::Kind::periodic)
+      throw InputError(path, 0, "--omega needs a periodic force in the scene");
+    if (!(*ov.omega > 0)) throw InputError("--omega", 0, "omega must be positive");
+    scene.force.omega = *ov.omega;
+  }
+
+  const YAML::Node run = r.required(doc, "run", "a scene file");
+  r.expect_keys(run, {"particles", "time", "record", "seed"}, "'run'");
+  scene.time = ov.time ? *ov.time : r.positive(r.required(run, "time", "'run'"), "run.time");
+  if (!(scene.time > 0)) throw InputError("--time", 0, "the run time must be positive");
+  scene.record_times = read_record(r, run["record"], scene.time);
+  scene.seed = ov.seed ? *ov.seed : run["seed"] ? std::uint64_t(r.number(run["seed"])) : 1;
+
+  const YAML::Node init = r.required(doc, "initial", "a scene file");
+  r.expect_keys(init, {"microcanonical", "csv"}, "'initial'");
+  if (const YAML::Node csv = init["csv"]) {
+    scene.initial_csv = (fs::path(path).parent_path() / csv.Scalar()).lexically_normal().string();
+    scene.initial_states = read_initial_csv(scene.initial_csv, table);
+    scene.particles = scene.initial_states.size();
+  } else {
+    const YAML::Node mc = r.required(init, "microcanonical", "'initial'");
+    r.expect_keys(mc, {"energy"}, "'microcanonical'");
+    scene.energy = r.positive(r.required(mc, "energy", "'microcanonical'"), "energy");
+    scene.particles = r.count(r.required(run, "particles", "'run'"), "run.particles");
+  }
+  if (ov.particles) {
+    if (!scene.initial_states.empty() && *ov.particles > scene.initial_states.size())
+      throw InputError("--particles", 0, "more particles than the initial-condition file holds");
+    if (*ov.particles == 0) throw InputError("--particles", 0, "need at least one particle");
+    scene.particles = *ov.particles;
+  }
+  scene.output_dir = ov.output_dir ? *ov.output_dir
+                     : doc["output"]   ? doc["output"].Scalar()
+                                       : "out/" + fs::path(path).stem().string();
+  return scene;
+}
+
+}  // namespace billiards::dynamics

@@ -1,0 +1,95 @@
+// `billiard run`: reproducibility, checkpoints, and errors on bad scenes.
+#include "cli_helpers.hpp"
+
+#include <catch2/catch.hpp>
+
+namespace fs = std::filesystem;
+
+TEST_CASE("same seed: 1 thread and 2 threads give byte-identical energies") {
+  const auto dir = scratch("threads");
+  const std::string common = "run scenes/clover-free.yaml --particles 3000 --time 50 --quiet --out ";
+  REQUIRE(billiard(common + (dir / "one").string() + " --threads 1").status == 0);
+  REQUIRE(billiard(common + (dir / "two").string() + " --threads 2").status == 0);
+  const auto a = read_file(dir / "one" / "energies.npy"), b = read_file(dir / "two" / "energies.npy");
+  CHECK(a.size() == 128 + 3000 * 11 * 8);
+  CHECK(a == b);
+  CHECK(read_file(dir / "one" / "energies.csv") == read_file(dir / "two" / "energies.csv"));
+}
+
+TEST_CASE("a run resumed from its checkpoint equals an uninterrupted run") {
+  const auto dir = scratch("resume");
+  const std::string common = "run scenes/clover-free.yaml --particles 5000 --time 20 --quiet --threads 2 --out ";
+  REQUIRE(billiard(common + (dir / "whole").string()).status == 0);
+  // Interrupted twice (1 chunk, then 2 more), then finished.
+  REQUIRE(billiard(common + (dir / "part").string() + " --max-chunks 1").status == 0);
+  CHECK_FALSE(fs::exists(dir / "part"));  // no output until the run is complete
+  CHECK(fs::exists(dir / "part.partial"));
+  REQUIRE(billiard(common + (dir / "part").string() + " --max-chunks 2").status == 0);
+  REQUIRE(billiard(common + (dir / "part").string()).status == 0);
+  CHECK_FALSE(fs::exists(dir / "part.partial"));
+  CHECK(read_file(dir / "whole" / "energies.npy") == read_file(dir / "part" / "energies.npy"));
+}
+
+namespace {
+
+/// Writes a scene next to the bundled shapes and runs it; returns the result.
+CommandResult run_scene(const std::string& name, const std::string& yaml, const fs::path& out) {
+  const fs::path scene = fs::path(BILLIARDS_SOURCE_DIR) / "scenes" / (".test-" + name + ".yaml");
+  write_file(scene, yaml);
+  const auto r = billiard("run " + scene.string() + " --quiet --out " + out.string());
+  fs::remove(scene);
+  return r;
+}
+
+const std::string good_scene = R"(shape: ../shapes/clover.yaml
+initial:
+  microcanonical: {energy: 1/2}
+run:
+  particles: 10
+  time: 1
+)";
+
+}  // namespace
+
+TEST_CASE("bad scenes are reported with file and line, exit non-zero, and write nothing") {
+  const auto dir = scratch("bad-scenes");
+  const auto out = dir / "out";
+  REQUIRE(run_scene("good", good_scene, out).status == 0);
+  fs::remove_all(out);
+  struct Case {
+    std::string name, yaml, message;
+  };
+  const std::string tail = "initial:\n  microcanonical: {energy: 1/2}\nrun: {particles: 10, time: 1}\n";
+  const std::vector<Case> cases = {
+      {"unknown-key", good_scene + "colour: red\n", ".test-unknown-key.yaml:7: unknown key 'colour'"},
+      {"bad-expression", "shape: ../shapes/clover.yaml\ninitial:\n  microcanonical: {energy: 1/}\nrun: {particles: 10, time: 1}\n",
+       ".test-bad-expression.yaml:3: bad expression '1/'"},
+      {"negative-energy", "shape: ../shapes/clover.yaml\ninitial:\n  microcanonical: {energy: -1}\nrun: {particles: 10, time: 1}\n",
+       ".test-negative-energy.yaml:3: energy must be positive"},
+      {"no-shape", "shape: ../shapes/nothing.yaml\n" + tail, "nothing.yaml: cannot open shape file"},
+      {"zero-particles", "shape: ../shapes/clover.yaml\ninitial:\n  microcanonical: {energy: 1}\nrun: {particles: 0, time: 1}\n",
+       ".test-zero-particles.yaml:4: run.particles must be a whole number"},
+      {"bad-omega", good_scene + "force:\n  periodic: {amplitude: [1, 0], omega: 0}\n",
+       ".test-bad-omega.yaml:8: omega must be positive"},
+      {"not-yaml", "shape: [unclosed\n", ".test-not-yaml.yaml:2: not valid YAML"},
+      {"bad-shape-override", "shape: ../shapes/clover.yaml\nset: {R9: 1}\n" + tail,
+       "--set names 'R9', which is not a parameter of this shape"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.name);
+    const auto r = run_scene(c.name, c.yaml, out);
+    CHECK(r.status != 0);
+    CHECK_THAT(r.output, Catch::Contains(c.message));
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
+TEST_CASE("particles outside the region in an initial-condition file are rejected by line") {
+  const auto dir = scratch("csv");
+  write_file(dir / "init.csv", "x,y,vx,vy\n0,0,1,0\n5,5,1,0\n");
+  const auto r = run_scene("csv", "shape: ../shapes/clover.yaml\ninitial:\n  csv: " + (dir / "init.csv").string() +
+                                      "\nrun: {time: 1}\n", dir / "out");
+  CHECK(r.status != 0);
+  CHECK_THAT(r.output, Catch::Contains("init.csv:3: particle is outside the region"));
+  CHECK_FALSE(fs::exists(dir / "out"));
+}
