@@ -5,6 +5,7 @@
 #include "progress.hpp"
 
 #include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/scene.hpp"
 
 #include <fmt/core.h>
@@ -193,10 +194,17 @@ void run(RunArgs args) {
              scene.shape.region.name, scene.force.name(), scene.time);
   double seconds = 0;
   EnsembleResult result;
+  const dynamics::Vec2 force_accel = scene.force.amplitude / scene.mass;
   try {
     switch (scene.force.kind) {
       case dynamics::Force::Kind::none: result = execute(scene, dynamics::FreeFlight{}, args, seconds); break;
-      default: throw std::runtime_error("forced flights are not available yet");
+      case dynamics::Force::Kind::constant:
+        result = execute(scene, dynamics::ConstantForceFlight{force_accel}, args, seconds);
+        break;
+      case dynamics::Force::Kind::periodic:
+        result = execute(scene, dynamics::PeriodicDriveFlight{force_accel, scene.force.omega, scene.force.phase},
+                         args, seconds);
+        break;
     }
   } catch (const Interrupted&) {
     fmt::print("stopped after {} new chunk(s); the same command resumes from {}.partial/\n", args.max_chunks,

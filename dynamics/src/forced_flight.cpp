@@ -1,0 +1,216 @@
+#include "billiards/dynamics/forced_flight.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace billiards::dynamics {
+
+namespace {
+
+constexpr double eps = std::numeric_limits<double>::epsilon();
+
+/// f and f' at one time of the scan, with what bounds f'' until the next sample.
+struct Sample {
+  double f, df;  // how far beyond the wall, and its rate
+  double M;      // bound on |f''| over the next `cap` time units
+  double cap;    // longest step for which M holds
+  Vec2 x;        // position
+};
+
+/// First τ in [0, tau_end] at which f crosses zero upward at a point in the wall's span.
+/// `sample(τ)` evaluates f; `earliest(τ, f)` returns a time before which f cannot vanish
+/// (from the guiding line and the bounded oscillation), or +∞; `tolerance(τ)` is the rounding
+/// level of f at τ.
+template <class SampleFn, class EarliestFn, class SpanFn, class TolFn>
+double first_outward_crossing(SampleFn sample, EarliestFn earliest, SpanFn in_span, TolFn tolerance,
+                              double tau_end) {
+  constexpr int max_steps = 1000000;
+  double tau = 0;
+  for (int step = 0; step < max_steps; ++step) {
+    if (tau > tau_end) return never;
+    const Sample p = sample(tau);
+    const double tol = tolerance(tau);
+    double s;
+    if (std::abs(p.f) <= tol) {
+      // At the wall to rounding: an outward crossing in the span is the collision.  A touch,
+      // an inward crossing or a crossing outside the span is passed by the time f needs to
+      // change by tol (a skipped crossing would be no deeper than rounding: a graze).
+      if (p.df > 0 && in_span(p.x)) return tau;
+      s = 2 * tol / (std::abs(p.df) + std::sqrt(2 * p.M * tol));
+    } else {
+      // Earliest zero allowed by |f''| ≤ M: the positive root of |f| − σ f' s − M s²/2.
+      const double a = std::abs(p.f), slope = p.f < 0 ? p.df : -p.df;
+      const double quadratic =
+          p.M > 0 ? 2 * a / (slope + std::sqrt(slope * slope + 2 * p.M * a)) : (slope > 0 ? a / slope : never);
+      s = std::max(std::min(quadratic, p.cap), earliest(tau, p.f) - tau);
+    }
+    // Keep a floor so that τ advances in floating point; it is far below any physical time.
+    tau += std::max(s, 4 * eps * std::max(tau, 1e-300));
+  }
+  throw std::runtime_error("certified root isolation did not converge in a million steps");
+}
+
+/// Time, from τ0, at which the linear function ℓ(τ) = l0 + l1 (τ − τ0) first reaches level L
+/// from below (ℓ(τ0) < L), or +∞.
+double reach_linear(double tau0, double l0, double l1, double level) {
+  if (l0 >= level) return tau0;
+  return l1 > 0 ? tau0 + (level - l0) / l1 : never;
+}
+
+/// First τ ≥ τ0 at which |q0 + u (τ − τ0)|² crosses ρ², going outward (from inside) when
+/// `outward`, inward otherwise; τ0 itself when already on that side, +∞ when never.
+double reach_radius(double tau0, const Vec2& q0, const Vec2& u, double rho, bool outward) {
+  const double a = u.squaredNorm(), b = q0.dot(u), c = q0.squaredNorm() - rho * rho;
+  if (outward ? c >= 0 : c <= 0) return tau0;
+  if (a == 0) return never;
+  const double D = b * b - a * c;
+  if (D < 0) return never;  // the guiding line misses the circle of radius ρ
+  const double root = std::sqrt(D);
+  if (outward) return tau0 + (b <= 0 ? (root - b) / a : -c / (b + root));  // larger root
+  if (b >= 0) return never;                                                // moving away
+  return tau0 + c / (root - b);                                            // smaller root
+}
+
+}  // namespace
+
+// ---- Periodic drive ---------------------------------------------------------------------
+
+DrivenState PeriodicDriveFlight::start(const dynamics::State& s) const {
+  DrivenState d;
+  static_cast<dynamics::State&>(d) = s;
+  d.phase = reduce_phase(static_cast<long double>(omega) * s.t + phase0);
+  return d;
+}
+
+DrivenState PeriodicDriveFlight::advance(const State& s, double t) const {
+  const double tau = t - s.t;
+  State r = s;
+  r.phase = reduce_phase(s.phase + static_cast<long double>(omega) * tau);
+  const double th0 = double(s.phase), th = double(r.phase);
+  const Vec2 amp_v = accel / omega, amp_x = accel / (omega * omega);
+  r.v = s.v + amp_v * (std::sin(th) - std::sin(th0));
+  r.x = s.x + (s.v - amp_v * std::sin(th0)) * tau - amp_x * (std::cos(th) - std::cos(th0));
+  r.t = t;
+  return r;
+}
+
+namespace {
+
+/// The periodic flight from s as a guiding line plus an oscillation of amplitude |F|/(mω²):
+/// x(τ) = g0 + u τ − (F/mω²) cos θ(τ).
+struct Quiver {
+  const PeriodicDriveFlight& flight;
+  const DrivenState& s;
+  Vec2 u, g0;
+  double speed_bound;  // bound on |v| at any time of this flight
+
+  Quiver(const PeriodicDriveFlight& f, const DrivenState& st) : flight(f), s(st) {
+    const double th0 = double(st.phase);
+    const Vec2 amp_x = f.accel / (f.omega * f.omega);
+    u = st.v - f.accel / f.omega * std::sin(th0);
+    g0 = st.x + amp_x * std::cos(th0);
+    speed_bound = u.norm() + f.accel.norm() / f.omega;
+  }
+  /// Position and velocity τ after the start (the closed form of advance()).  Within one
+  /// flight ωτ stays moderate, so a double phase is accurate to ~1e-12 rad, which moves the
+  /// particle by 1e-12 |F|/(mω²): no extended-precision reduction is needed here.
+  std::pair<Vec2, Vec2> at(double tau) const {
+    if (tau == 0) return {s.x, s.v};
+    const double omega = flight.omega, th = double(s.phase) + omega * tau;
+    return {g0 + u * tau - flight.accel / (omega * omega) * std::cos(th), u + flight.accel / omega * std::sin(th)};
+  }
+};
+
+}  // namespace
+
+double PeriodicDriveFlight::exit_time(const State& s, const SegmentWall& w, double t_end) const {
+  const Quiver q(*this, s);
+  const double n_a = std::abs(w.normal.dot(accel));
+  const double B = n_a / (omega * omega);  // |n·oscillation| ≤ B
+  const double nu = w.normal.dot(q.u), g_off = w.normal.dot(q.g0 - w.a);
+  auto tolerance = [&](double tau) { return w.slack + 8 * eps * (std::abs(g_off) + std::abs(nu) * tau + B); };
+  auto sample = [&](double tau) {
+    const auto [x, v] = q.at(tau);
+    return Sample{w.normal.dot(x - w.a), w.normal.dot(v), n_a, never, x};
+  };
+  // f lies within B of its guiding part g_off + nu τ, which must first come within B (and
+  // rounding) of zero.
+  auto earliest = [&](double tau, double f) {
+    const double margin = B + tolerance(tau), guide = g_off + nu * tau;
+    return f < 0 ? reach_linear(tau, guide, nu, -margin) : reach_linear(tau, -guide, -nu, -margin);
+  };
+  auto in_span = [&](const Vec2& x) { return w.within_span(x); };
+  const double tau = first_outward_crossing(sample, earliest, in_span, tolerance, t_end - s.t);
+  return tau == never ? never : s.t + tau;
+}
+
+double PeriodicDriveFlight::exit_time(const State& s, const ArcWall& w, double t_end) const {
+  const Quiver q(*this, s);
+  const double delta = accel.norm() / (omega * omega);  // |oscillation| ≤ δ
+  const double sign = w.focusing ? 1.0 : -1.0;           // f = ±(|x − c| − r): beyond the wall
+  const double V = q.speed_bound, A = accel.norm();
+  const double scale = (s.x - w.center).norm() + w.radius;
+  auto tolerance = [&](double tau) { return w.slack + 8 * eps * (scale + V * tau + delta); };
+  auto sample = [&](double tau) {
+    const auto [x, v] = q.at(tau);
+    const Vec2 p = x - w.center;
+    const double rho = p.norm();
+    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
+    const double M = 2 * V * V / std::max(rho, 1e-300) + A;
+    return Sample{sign * (rho - w.radius), sign * p.dot(v) / rho, M, rho / (2 * V), x};
+  };
+  // |x − c| lies within δ of the guiding line's distance to the centre, which must first come
+  // within δ (and rounding) of the radius.
+  auto earliest = [&](double tau, double f) {
+    const Vec2 g = q.g0 + q.u * tau - w.center;
+    const double margin = delta + tolerance(tau);
+    const bool inside = (f < 0) == w.focusing;  // inside the circle, to rounding
+    return inside ? reach_radius(tau, g, q.u, std::max(0.0, w.radius - margin), true)
+                  : reach_radius(tau, g, q.u, w.radius + margin, false);
+  };
+  auto in_span = [&](const Vec2& x) { return w.within_span(x); };
+  const double tau = first_outward_crossing(sample, earliest, in_span, tolerance, t_end - s.t);
+  return tau == never ? never : s.t + tau;
+}
+
+// ---- Static force ----------------------------------------------------------------------
+
+double ConstantForceFlight::exit_time(const State& s, const SegmentWall& w, double t_end) const {
+  const double n_a = w.normal.dot(accel);
+  const double f0 = std::abs(w.normal.dot(s.x - w.a));
+  auto tolerance = [&](double tau) {
+    return w.slack + 8 * eps * (f0 + s.v.norm() * tau + std::abs(n_a) * tau * tau);
+  };
+  auto sample = [&](double tau) {
+    const State r = advance(s, s.t + tau);
+    return Sample{w.normal.dot(r.x - w.a), w.normal.dot(r.v), std::abs(n_a), never, r.x};
+  };
+  auto earliest = [](double tau, double) { return tau; };
+  auto in_span = [&](const Vec2& x) { return w.within_span(x); };
+  const double tau = first_outward_crossing(sample, earliest, in_span, tolerance, t_end - s.t);
+  return tau == never ? never : s.t + tau;
+}
+
+double ConstantForceFlight::exit_time(const State& s, const ArcWall& w, double t_end) const {
+  const double sign = w.focusing ? 1.0 : -1.0;
+  const double A = accel.norm();
+  const double scale = (s.x - w.center).norm() + w.radius;
+  auto tolerance = [&](double tau) { return w.slack + 8 * eps * (scale + s.v.norm() * tau + A * tau * tau); };
+  auto sample = [&](double tau) {
+    const State r = advance(s, s.t + tau);
+    const Vec2 p = r.x - w.center;
+    const double rho = p.norm(), V = r.v.norm();
+    // Over a step of length h ≤ ρ/(2V'), |v| ≤ V' = V + A h and |p| ≥ ρ/2.
+    const double h = rho / (2 * (V + A) + 1e-300);
+    const double Vmax = V + A * h;
+    return Sample{sign * (rho - w.radius), sign * p.dot(r.v) / rho, 2 * Vmax * Vmax / std::max(rho, 1e-300) + A,
+                  std::min(h, 1.0), r.x};
+  };
+  auto earliest = [](double tau, double) { return tau; };
+  auto in_span = [&](const Vec2& x) { return w.within_span(x); };
+  const double tau = first_outward_crossing(sample, earliest, in_span, tolerance, t_end - s.t);
+  return tau == never ? never : s.t + tau;
+}
+
+}  // namespace billiards::dynamics
