@@ -1,6 +1,7 @@
 #include "billiards/dynamics/forced_flight.hpp"
 
 #include <algorithm>
+#include <tuple>
 #include <limits>
 #include <stdexcept>
 
@@ -176,6 +177,23 @@ double PeriodicDriveFlight::exit_time(const State& s, const ArcWall& w, double t
 
 // ---- Static force ----------------------------------------------------------------------
 
+namespace {
+
+/// Position and velocity τ after s, evaluated in τ (not in absolute time, whose rounding at
+/// large t would swallow the last steps of the scan).
+std::pair<Vec2, Vec2> parabola(const State& s, const Vec2& accel, double tau) {
+  return {s.x + s.v * tau + 0.5 * accel * tau * tau, s.v + accel * tau};
+}
+
+}  // namespace
+
+State ConstantForceFlight::advance(const State& s, double t) const {
+  State r = s;
+  std::tie(r.x, r.v) = parabola(s, accel, t - s.t);
+  r.t = t;
+  return r;
+}
+
 double ConstantForceFlight::exit_time(const State& s, const SegmentWall& w, double t_end) const {
   const double n_a = w.normal.dot(accel);
   const double f0 = std::abs(w.normal.dot(s.x - w.a));
@@ -183,8 +201,8 @@ double ConstantForceFlight::exit_time(const State& s, const SegmentWall& w, doub
     return w.slack + 8 * eps * (f0 + s.v.norm() * tau + std::abs(n_a) * tau * tau);
   };
   auto sample = [&](double tau) {
-    const State r = advance(s, s.t + tau);
-    return Sample{w.normal.dot(r.x - w.a), w.normal.dot(r.v), std::abs(n_a), never, r.x};
+    const auto [x, v] = parabola(s, accel, tau);
+    return Sample{w.normal.dot(x - w.a), w.normal.dot(v), std::abs(n_a), never, x};
   };
   auto earliest = [](double tau, double) { return tau; };
   auto in_span = [&](const Vec2& x) { return w.within_span(x); };
@@ -198,14 +216,13 @@ double ConstantForceFlight::exit_time(const State& s, const ArcWall& w, double t
   const double scale = (s.x - w.center).norm() + w.radius;
   auto tolerance = [&](double tau) { return w.slack + 8 * eps * (scale + s.v.norm() * tau + A * tau * tau); };
   auto sample = [&](double tau) {
-    const State r = advance(s, s.t + tau);
-    const Vec2 p = r.x - w.center;
-    const double rho = p.norm(), V = r.v.norm();
+    const auto [x, v] = parabola(s, accel, tau);
+    const Vec2 p = x - w.center;
+    const double rho = p.norm(), V = v.norm();
     // Over a step of length h ≤ ρ/(2V'), |v| ≤ V' = V + A h and |p| ≥ ρ/2.
     const double h = rho / (2 * (V + A) + 1e-300);
     const double Vmax = V + A * h;
-    return Sample{sign * (rho - w.radius), sign * p.dot(r.v) / rho, 2 * Vmax * Vmax / std::max(rho, 1e-300) + A,
-                  std::min(h, 1.0), r.x};
+    return Sample{sign * (rho - w.radius), sign * p.dot(v) / rho, 2 * Vmax * Vmax / std::max(rho, 1e-300) + A, h, x};
   };
   auto earliest = [](double tau, double) { return tau; };
   auto in_span = [&](const Vec2& x) { return w.within_span(x); };

@@ -47,14 +47,7 @@ struct ConstantForceFlight {
   Vec2 accel;  // F / m
 
   State start(const State& s) const { return s; }
-  State advance(const State& s, double t) const {
-    const double tau = t - s.t;
-    State r = s;
-    r.x = s.x + s.v * tau + 0.5 * accel * tau * tau;
-    r.v = s.v + accel * tau;
-    r.t = t;
-    return r;
-  }
+  State advance(const State& s, double t) const;
   double exit_time(const State& s, const SegmentWall& w, double t_end) const;
   double exit_time(const State& s, const ArcWall& w, double t_end) const;
 };

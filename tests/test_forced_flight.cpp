@@ -1,0 +1,182 @@
+// Forced flights: closed forms against MPFR, certified exit times against brute force, and the
+// paper's driven clover against g1 Δt and g2 Δt.
+#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/geometry.hpp"
+
+#include <boost/multiprecision/mpfr.hpp>
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace billiards;
+using dynamics::DrivenState;
+using dynamics::PeriodicDriveFlight;
+using dynamics::Vec2;
+using Real = boost::multiprecision::mpfr_float_100;
+
+namespace {
+
+const double pi = geometry::pi;
+
+/// Appendix B's x(t), v(t) from (x0, v0) at t = 0, phase θ = ω t + φ, in the scalar type T
+/// (100-bit MPFR for references, long double for fast scans).
+template <class T>
+std::pair<std::array<T, 2>, std::array<T, 2>> reference(const Vec2& x0, const Vec2& v0, const Vec2& A,
+                                                        double omega, double phase, const T& t) {
+  using std::cos;
+  using std::sin;
+  const T w = omega, th0 = T(phase), th = w * t + phase;
+  std::array<T, 2> x, v;
+  for (int i = 0; i < 2; ++i) {
+    const T a = A[i];
+    v[i] = v0[i] + a / w * (sin(th) - sin(th0));
+    x[i] = x0[i] + (v0[i] - a / w * sin(th0)) * t - a / (w * w) * (cos(th) - cos(th0));
+  }
+  return {x, v};
+}
+
+/// First outward crossing of f(t) (from < 0 to > 0) after t = 0: fine sampling in long double,
+/// then bisection in MPFR; -1 if none before t_max.
+template <class F>
+double brute_force_root(F f, double h, double t_max) {
+  long double flo = f.template operator()<long double>(0.0L);
+  for (long n = 1; n * h <= t_max; ++n) {
+    const long double t = (long double)n * h, ft = f.template operator()<long double>(t);
+    if (flo < 0 && ft > 0) {
+      Real a = Real(double(n - 1)) * h, b = Real(double(n)) * h;
+      for (int k = 0; k < 120; ++k) {
+        const Real m = (a + b) / 2;
+        (f.template operator()<Real>(m) > 0 ? b : a) = m;
+      }
+      return static_cast<double>(b);
+    }
+    flo = ft;
+  }
+  return -1;
+}
+
+geometry::Region2 one_piece(const geometry::Piece& p) {
+  geometry::Region2 r;
+  r.outer.pieces = {p};
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("the closed-form flight matches MPFR, with the phase reduced at large omega t") {
+  const PeriodicDriveFlight flight{Vec2(7, -3), 2560 * pi, 0.3};
+  dynamics::State s0;
+  s0.x = Vec2(0.1, 0.2);
+  s0.v = Vec2(0.6, -0.8);
+  const DrivenState s = flight.start(s0);
+  for (const double t : {0.37, 12.5, 1e4}) {
+    const DrivenState r = flight.advance(s, t);
+    const auto [x, v] = reference<Real>(s0.x, s0.v, flight.accel, flight.omega, flight.phase0, Real(t));
+    for (int i = 0; i < 2; ++i) {
+      CHECK(std::abs(r.v[i] - static_cast<double>(v[i])) < 1e-13);
+      // x grows like |v| t: compare relative to it.
+      CHECK(std::abs(r.x[i] - static_cast<double>(x[i])) < 1e-13 * (1 + t));
+    }
+  }
+}
+
+TEST_CASE("zero force gives exactly the free billiard") {
+  const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/clover.yaml");
+  const dynamics::Table table(shape.region);
+  const PeriodicDriveFlight driven{Vec2(0, 0), 40 * pi, 0};
+  const dynamics::ConstantForceFlight constant{Vec2(0, 0)};
+  dynamics::ParticleRng rng(4, 0);
+  dynamics::State free = dynamics::sample_microcanonical(table, 1.0, rng);
+  for (int k = 0; k < 500; ++k) {
+    const auto hf = dynamics::collision(table, dynamics::FreeFlight{}, free, 1e9);
+    const auto hd = dynamics::collision(table, driven, driven.start(free), 1e9);
+    const auto hc = dynamics::collision(table, constant, free, 1e9);
+    REQUIRE(hd.wall == hf.wall);
+    REQUIRE(hc.wall == hf.wall);
+    REQUIRE(std::abs(hd.t - hf.t) <= 1e-12 * (1 + hf.t));
+    REQUIRE(std::abs(hc.t - hf.t) <= 1e-12 * (1 + hf.t));
+    dynamics::bounce(dynamics::FreeFlight{}, free, hf);
+  }
+}
+
+TEST_CASE("certified exit times equal a brute-force MPFR root scan") {
+  // A long straight wall y = 1 (region below), a focusing unit circle and a dispersing circle.
+  const dynamics::SegmentWall line(geometry::Segment{Vec2(10, 1), Vec2(-10, 1)});
+  geometry::Arc outer{Vec2(0, 0), 1.0, 0, 2 * pi, Vec2(1, 0), Vec2(1, 0)};
+  geometry::Arc scatterer{Vec2(0, 0), 0.5, 0, -2 * pi, Vec2(0.5, 0), Vec2(0.5, 0)};
+  const dynamics::ArcWall focusing(outer), dispersing(scatterer);
+  dynamics::ParticleRng rng(17, 0);
+  int compared = 0;
+  for (const double omega : {2 * pi, 40 * pi, 2560 * pi}) {
+    for (int k = 0; k < 10; ++k) {
+      const double angle = 2 * pi * rng.uniform();
+      const PeriodicDriveFlight flight{10 * Vec2(std::cos(angle), std::sin(angle)), omega, 2 * pi * rng.uniform()};
+      const double dir = 2 * pi * rng.uniform();
+      dynamics::State s0;
+      s0.v = Vec2(std::cos(dir), std::sin(dir));
+      const double h = std::min(2 * pi / omega / 256, 2e-3);
+      auto check = [&](const auto& wall, auto f, const char* what) {
+        INFO(what << " omega " << omega << " case " << k);
+        const double expected = brute_force_root(f, h, 2.0);
+        const double got = flight.exit_time(flight.start(s0), wall, 2.0);
+        if (expected < 0) {
+          CHECK(got == dynamics::never);
+        } else {
+          CHECK(std::abs(got - expected) <= 1e-10 * (1 + expected));
+          ++compared;
+        }
+      };
+      auto position = [&]<class T>(const T& t) { return reference<T>(s0.x, s0.v, flight.accel, omega, flight.phase0, t).first; };
+      s0.x = Vec2(0.4 * rng.uniform() - 0.2, 0.6 * rng.uniform() - 0.3);
+      check(line, [&]<class T>(const T& t) -> T { return position(t)[1] - 1; }, "line");
+      check(focusing, [&]<class T>(const T& t) -> T { auto x = position(t); return x[0] * x[0] + x[1] * x[1] - 1; }, "focusing");
+      // Start outside the scatterer, aimed near it: some hit, some graze, some miss.
+      s0.x = Vec2(-0.9, 0.5 + 0.2 * rng.uniform() - 0.1);
+      s0.v = Vec2(1, -0.55 + 0.1 * rng.uniform());
+      check(dispersing, [&]<class T>(const T& t) -> T { auto x = position(t); return T(0.25) - x[0] * x[0] - x[1] * x[1]; },
+            "dispersing");
+    }
+  }
+  CHECK(compared > 40);
+}
+
+TEST_CASE("the paper's clover at omega = 320 pi: <dE> and Var(dE) match g1 dt and g2 dt") {
+  // Hodson & Jarzynski, Appendix B: m = 1, E0 = 1/2, F = 10 along (1,1)/√2, Δt = 20, and
+  // C = (2/m)^{3/2} W/(S λ ω²) with W/S = F²/2 for the clover: g1 = C √E0, g2 = 4 C E0^{3/2}/3.
+  const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/clover.yaml");
+  const auto m = geometry::measures_of(shape.region);
+  const double omega = 320 * pi, F = 10, E0 = 0.5, dt = 20;
+  const Vec2 force = F / std::sqrt(2.0) * Vec2(1, 1);
+  const double C = std::pow(2.0, 1.5) * geometry::wall_integral(m, force) / (m.surface * geometry::mean_free_path(m) * omega * omega);
+  REQUIRE(std::abs(C * omega * omega / (F * F) - 0.5419) < 1e-4);
+  const double g1 = C * std::sqrt(E0), g2 = 4 * C * std::pow(E0, 1.5) / 3;
+
+  const dynamics::Table table(shape.region);
+  const PeriodicDriveFlight flight{force, omega, 0};
+  const std::size_t n = 20000;
+  dynamics::RunOptions opt;
+  opt.record_times = {dt};
+  dynamics::EnsembleResult res;
+  res.energies.resize(n);
+  res.logs.resize(n);
+  auto initial = [&](std::size_t i) {
+    dynamics::ParticleRng rng(2021, i);
+    return flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
+  };
+  dynamics::run_particles(table, flight, initial, opt, 0, n, 2, res);
+  REQUIRE(res.escapes() == 0);
+  double mean = 0, m2 = 0, m4 = 0;
+  for (double e : res.energies) mean += e - E0;
+  mean /= double(n);
+  for (double e : res.energies) {
+    const double d2 = (e - E0 - mean) * (e - E0 - mean);
+    m2 += d2;
+    m4 += d2 * d2;
+  }
+  const double var = m2 / double(n - 1), se_mean = std::sqrt(var / double(n));
+  const double se_var = std::sqrt((m4 / double(n) - var * var) / double(n));
+  CHECK(std::abs(mean - g1 * dt) < 3 * se_mean);
+  CHECK(std::abs(var - g2 * dt) < 3 * se_var);
+  CHECK(se_var < 0.02 * g2 * dt);  // resolution: a 6% error in g2 would fail
+}
