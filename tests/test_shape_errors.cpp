@@ -61,3 +61,41 @@ TEST_CASE("a 'near' point picks one of two circle intersections") {
   CHECK(std::abs(m.volume - (2 * std::acos(0.5) - 0.5 * std::sqrt(3.0))) < 1e-14);
   CHECK(std::abs(m.surface - 2 * (2 * std::acos(0.5))) < 1e-14);
 }
+
+TEST_CASE("CGAL validation errors name the pieces and lines involved") {
+  const std::string square = "boundary:\n  polygon: [[0,0],[4,0],[4,4],[0,4]]\n";
+  // A bow-tie: the segments from lines 2 and 4 cross.
+  CHECK_THAT(error_of("boundary:\n  pieces:\n    - point: [0, 0]\n    - point: [1, 1]\n    - point: [1, 0]\n"
+                      "    - point: [0, 1]\n"),
+             Catch::Contains("cross or touch at (0.5, 0.5)"));
+  // A half disk on the right of x = 1, and a segment from its top cutting back through it.
+  CHECK_THAT(error_of("boundary:\n  pieces:\n    - point: [0, -1]\n    - point: [1, -1]\n"
+                      "    - arc: {center: [1, 0], radius: 1, side: inside}\n    - point: [1, 1]\n"
+                      "    - point: [2.5, 0]\n"),
+             Catch::Contains("the arc at line 5 and the segment at line 6 cross or touch"));
+  CHECK_THAT(error_of(square + "holes:\n  - circle: {center: [9, 9], radius: 1}\n"),
+             Catch::Contains("bad.yaml:4: the hole is not inside the outer boundary"));
+  CHECK_THAT(error_of(square + "holes:\n  - circle: {center: [4, 2], radius: 1}\n"),
+             Catch::Contains("a hole must lie strictly inside"));
+  CHECK_THAT(error_of(square + "holes:\n  - circle: {center: [1.5, 2], radius: 1}\n  - circle: {center: [2.5, 2], radius: 1}\n"),
+             Catch::Contains("a hole must lie strictly inside"));
+  CHECK_THAT(error_of(square + "holes:\n  - circle: {center: [2, 2], radius: 1.5}\n  - circle: {center: [2, 2], radius: 0.5}\n"),
+             Catch::Contains("the hole lies inside the hole at line 4"));
+  // Tangent to the outer wall: a touch is not allowed either.
+  CHECK_THAT(error_of(square + "holes:\n  - circle: {center: [2, 1], radius: 1}\n"),
+             Catch::Contains("a hole must lie strictly inside"));
+  CHECK_THAT(error_of("boundary:\n  pieces:\n    - point: [0, 0]\n    - point: [0, 1]\n    - point: [1, 1]\n"
+                      "    - point: [1, 0]\n"),
+             Catch::Contains("bad.yaml:2: the outer boundary runs clockwise"));
+  CHECK_THAT(error_of(square + "holes:\n  - pieces:\n    - point: [1, 1]\n    - point: [2, 1]\n    - point: [2, 2]\n"),
+             Catch::Contains("bad.yaml:4: the hole runs counter-clockwise"));
+}
+
+TEST_CASE("valid tables with tangent joints and holes pass validation") {
+  for (const char* name : {"clover", "stadium", "sinai", "mushroom", "annulus", "wavy-1200"})
+    CHECK_NOTHROW(geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml"));
+  // Scaled by 1e-6 and 1e6, the clover is still valid.
+  for (const char* s : {"1e-6", "1e6"})
+    CHECK_NOTHROW(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/clover.yaml",
+                                       {{"R1", s}, {"R2", std::string("2*") + s}}));
+}

@@ -159,9 +159,11 @@ class LoopReader {
     const std::string what = hole ? "a hole" : "the boundary";
     r_.expect_keys(n, {"polygon", "circle", "pieces"}, what);
     if (n.size() != 1) r_.fail(n, what + " must be exactly one of: polygon, circle, pieces");
-    if (n["polygon"]) return polygon(n["polygon"], hole);
-    if (n["circle"]) return full_circle(circle(n["circle"], !hole), hole);
-    return pieces(n["pieces"]);
+    Loop loop = n["polygon"]  ? polygon(n["polygon"], hole)
+                : n["circle"] ? full_circle(circle(n["circle"], !hole), hole)
+                              : pieces(n["pieces"]);
+    loop.origin = r_.ref(n);
+    return loop;
   }
 
  private:
