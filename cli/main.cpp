@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   billiards::cli::set_command_line(argc, argv);
   billiards::cli::add_info(app);
   billiards::cli::add_run(app);
+  billiards::cli::add_coeffs(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

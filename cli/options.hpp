@@ -1,12 +1,15 @@
 // Options shared by several subcommands.
 #pragma once
 
+#include "billiards/analysis/coefficients.hpp"
+#include "billiards/dynamics/scene.hpp"
 #include "billiards/geometry/expression.hpp"
 #include "billiards/geometry/shape_file.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,5 +28,10 @@ inline Overrides parse_overrides(const std::vector<std::string>& assignments) {
 
 /// The JSON block `billiard info --json` prints.
 nlohmann::json shape_info(const geometry::Shape& shape);
+
+/// The theory's prediction for a scene (periodic drive, microcanonical start), if it has one.
+std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene);
+nlohmann::json to_json(const analysis::Coefficients& c);
+void print_prediction(const analysis::Coefficients& c, double dt);
 
 }  // namespace billiards::cli

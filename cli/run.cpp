@@ -4,6 +4,7 @@
 #include "output.hpp"
 #include "progress.hpp"
 
+#include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/scene.hpp"
@@ -166,7 +167,39 @@ nlohmann::json summarize(const Scene& scene, const EnsembleResult& r, double sec
             {"seed", scene.seed}, {"threads", args.threads}, {"collisions", r.collisions()},
             {"escapes", r.escapes()}, {"wall_seconds", seconds},
             {"collisions_per_second", double(r.collisions()) / seconds}, {"per_time", per_time}});
+  if (const auto c = prediction_of(scene)) {
+    j["prediction"] = to_json(*c);
+    // Deviation of the measurement from g1 Δt and g2 Δt, in standard errors.
+    j["mean_dE_deviation_se"] = (j["mean_dE"].get<double>() - c->g1 * scene.time) / j["se_mean_dE"].get<double>();
+    j["var_dE_deviation_se"] = (j["var_dE"].get<double>() - c->g2 * scene.time) / j["se_var_dE"].get<double>();
+    // The exact Fokker–Planck moments at the end time (they include the growth of g1, g2 with E).
+    const auto fp = analysis::fokker_planck_moments(c->C * scene.time, scene.energy, c->dimension);
+    j["fp_mean_dE"] = fp.mean - scene.energy;
+    j["fp_var_dE"] = fp.variance;
+    j["mean_dE_fp_deviation_se"] = (j["mean_dE"].get<double>() - j["fp_mean_dE"].get<double>()) / j["se_mean_dE"].get<double>();
+    j["var_dE_fp_deviation_se"] = (j["var_dE"].get<double>() - fp.variance) / j["se_var_dE"].get<double>();
+  }
   return j;
+}
+
+/// η(E, t) of the analytic Fokker–Planck solution at every record time, on a grid spanning the
+/// simulated energies (a column E, then one column per record time).
+std::string fokker_planck_table(const Scene& scene, const analysis::Coefficients& c, const EnsembleResult& r) {
+  double hi = scene.energy;
+  for (double e : r.energies)
+    if (std::isfinite(e)) hi = std::max(hi, e);
+  std::string csv = "E";
+  for (double t : scene.record_times) csv += fmt::format(",eta(t={})", t);
+  csv += "\n";
+  constexpr int points = 600;
+  for (int i = 1; i <= points; ++i) {
+    const double E = 1.05 * hi * i / points;
+    csv += fmt::format("{:.9g}", E);
+    for (double t : scene.record_times)
+      csv += fmt::format(",{:.9g}", t > 0 ? analysis::fokker_planck_eta(E, c.C * t, scene.energy, c.dimension) : 0.0);
+    csv += "\n";
+  }
+  return csv;
 }
 
 void write_outputs(const Scene& scene, const EnsembleResult& r, const nlohmann::json& summary) {
@@ -183,6 +216,7 @@ void write_outputs(const Scene& scene, const EnsembleResult& r, const nlohmann::
   out.write_text("energies.csv", csv);
   out.write_npy("energies.npy", r.energies, n, m);
   out.write_json("summary.json", summary);
+  if (const auto c = prediction_of(scene)) out.write_text("fokker-planck.csv", fokker_planck_table(scene, *c, r));
   out.commit();
 }
 
@@ -192,6 +226,8 @@ void run(RunArgs args) {
   if (args.threads <= 0) args.threads = omp_get_max_threads();
   fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
              scene.shape.region.name, scene.force.name(), scene.time);
+  const auto prediction = prediction_of(scene);
+  if (prediction) print_prediction(*prediction, scene.time);
   double seconds = 0;
   EnsembleResult result;
   const dynamics::Vec2 force_accel = scene.force.amplitude / scene.mass;
@@ -215,6 +251,12 @@ void run(RunArgs args) {
   write_outputs(scene, result, summary);
   fmt::print("measured  <dE> = {:.6g} ± {:.2g}   Var(dE) = {:.6g} ± {:.2g}\n", summary["mean_dE"].get<double>(),
              summary["se_mean_dE"].get<double>(), summary["var_dE"].get<double>(), summary["se_var_dE"].get<double>());
+  if (prediction)
+    fmt::print("deviation from g1 dt: {:+.2f} SE, from g2 dt: {:+.2f} SE; from the exact Fokker-Planck moments "
+               "({:.6g}, {:.6g}): {:+.2f} SE, {:+.2f} SE\n",
+               summary["mean_dE_deviation_se"].get<double>(), summary["var_dE_deviation_se"].get<double>(),
+               summary["fp_mean_dE"].get<double>(), summary["fp_var_dE"].get<double>(),
+               summary["mean_dE_fp_deviation_se"].get<double>(), summary["var_dE_fp_deviation_se"].get<double>());
   fmt::print("{} collisions in {:.3g} s ({:.3g} collisions/s), {} escapes; results in {}/\n",
              result.collisions(), seconds, double(result.collisions()) / seconds, result.escapes(), scene.output_dir);
   if (result.escapes() > 0) {

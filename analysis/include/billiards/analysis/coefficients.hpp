@@ -1,0 +1,52 @@
+// The paper's drift and diffusion coefficients for a standard billiard (U = 0) under a uniform
+// periodic drive F cos(ωt), in any dimension d, from the table's exact measures alone.
+#pragma once
+
+#include "billiards/geometry/measures.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace billiards::analysis {
+
+struct Drive {
+  Eigen::VectorXd F;  // force amplitude (uniform)
+  double omega = 0;
+  double mass = 1;
+};
+
+/// Everything the theory predicts at energy E, before any dynamics.
+struct Coefficients {
+  int dimension = 2;
+  double energy = 0;                 // E
+  double speed = 0;                  // v_E = √(2E/m)
+  double volume = 0, surface = 0;    // V, S
+  double mean_free_path = 0;         // λ = d B_d/B_{d−1} V/S
+  double wall_integral = 0;          // ∫ (F·n)² dS
+  double density_of_states = 0;      // Σ(E) = d B_d V v^{d−2}/m
+  double collision_rate_density = 0; // γ_E = B_{d−1}/(d B_d) v/V, uniform on the wall
+  double collision_rate = 0;         // γ_E S = v/λ
+  double C = 0;                      // g1 = C √E, g2 = 4 C E^{3/2}/(d+1)
+  double g1 = 0, g2 = 0;
+  double force_ratio = 0;            // F/(m ω v_E): must be ≪ 1
+  double length_ratio = 0;           // v_E/(ω λ): must be ≪ 1
+  std::vector<std::string> warnings;
+};
+
+/// Validity ratios above this are reported as warnings.
+inline constexpr double validity_threshold = 0.1;
+
+double density_of_states(const geometry::Measures& m, double mass, double E);
+double collision_rate_density(const geometry::Measures& m, double mass, double E);
+/// g1(E, ω) = 2 ω⁻² v_E/(m λ) · (1/S) ∫ (F·n)² dS  (the paper's eq. g1noU).
+double drift_g1(const geometry::Measures& m, const Drive& drive, double E);
+/// g2(E, ω) = 4 ω⁻² v_E³/((d+1) λ) · (1/S) ∫ (F·n)² dS  (eq. g2noU).
+double diffusion_g2(const geometry::Measures& m, const Drive& drive, double E);
+/// C = (2/m)^{3/2} ω⁻²/λ · (1/S) ∫ (F·n)² dS  (eq. B5).
+double constant_C(const geometry::Measures& m, const Drive& drive);
+
+Coefficients coefficients(const geometry::Measures& m, const Drive& drive, double E);
+
+}  // namespace billiards::analysis

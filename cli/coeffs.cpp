@@ -1,0 +1,79 @@
+// billiard coeffs SCENE: the theory's prediction, before any dynamics.
+#include "commands.hpp"
+#include "options.hpp"
+
+#include "billiards/analysis.hpp"
+#include "billiards/dynamics/scene.hpp"
+
+#include <fmt/core.h>
+
+#include <iostream>
+
+namespace billiards::cli {
+
+std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene) {
+  if (scene.force.kind != dynamics::Force::Kind::periodic || scene.energy <= 0) return std::nullopt;
+  analysis::Drive drive;
+  drive.F = Eigen::Vector2d(scene.force.amplitude);
+  drive.omega = scene.force.omega;
+  drive.mass = scene.mass;
+  return analysis::coefficients(geometry::measures_of(scene.shape.region), drive, scene.energy);
+}
+
+nlohmann::json to_json(const analysis::Coefficients& c) {
+  return {{"dimension", c.dimension},
+          {"E", c.energy},
+          {"v_E", c.speed},
+          {"V", c.volume},
+          {"S", c.surface},
+          {"mean_free_path", c.mean_free_path},
+          {"wall_integral", c.wall_integral},
+          {"Sigma", c.density_of_states},
+          {"gamma_E", c.collision_rate_density},
+          {"collision_rate", c.collision_rate},
+          {"C", c.C},
+          {"g1", c.g1},
+          {"g2", c.g2},
+          {"validity_force_ratio", c.force_ratio},
+          {"validity_length_ratio", c.length_ratio},
+          {"warnings", c.warnings}};
+}
+
+void print_prediction(const analysis::Coefficients& c, double dt) {
+  fmt::print("prediction (E = {:g}): lambda = {:.6g}, wall integral = {:.6g}, C = {:.6g}\n", c.energy,
+             c.mean_free_path, c.wall_integral, c.C);
+  fmt::print("  g1 = {:.6g}, g2 = {:.6g}; over dt = {:g}: <dE> = {:.6g}, Var(dE) = {:.6g}\n", c.g1, c.g2, dt,
+             c.g1 * dt, c.g2 * dt);
+  fmt::print("  validity: F/(m omega v) = {:.3g}, v/(omega lambda) = {:.3g} (both must be << 1)\n", c.force_ratio,
+             c.length_ratio);
+  for (const auto& w : c.warnings) fmt::print("  warning: {}\n", w);
+}
+
+void add_coeffs(CLI::App& app) {
+  auto* cmd = app.add_subcommand("coeffs", "The energy-diffusion prediction of a driven scene, before any dynamics");
+  struct Args {
+    std::string scene;
+    bool json = false;
+    dynamics::SceneOverrides overrides;
+    std::vector<std::string> set;
+  };
+  auto args = std::make_shared<Args>();
+  cmd->add_option("scene", args->scene, "scene file (YAML)")->required();
+  cmd->add_flag("--json", args->json, "print JSON");
+  cmd->add_option("--omega", args->overrides.omega, "drive frequency");
+  add_set_option(cmd, args->set);
+  cmd->callback([args] {
+    args->overrides.set = parse_overrides(args->set);
+    const auto scene = dynamics::load_scene(args->scene, args->overrides);
+    const auto c = prediction_of(scene);
+    if (!c)
+      throw InputError(args->scene, 0,
+                       "coeffs needs a periodic force and a microcanonical initial energy (U = 0, uniform F)");
+    if (args->json)
+      std::cout << to_json(*c).dump(2) << "\n";
+    else
+      print_prediction(*c, scene.time);
+  });
+}
+
+}  // namespace billiards::cli
