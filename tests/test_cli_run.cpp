@@ -16,6 +16,16 @@ TEST_CASE("same seed: 1 thread and 2 threads give byte-identical energies") {
   CHECK(read_file(dir / "one" / "energies.csv") == read_file(dir / "two" / "energies.csv"));
 }
 
+TEST_CASE("driven scene: 1 thread and 2 threads give byte-identical energies") {
+  const auto dir = scratch("threads-driven");
+  const std::string common = "run scenes/clover-driven.yaml --particles 2000 --time 5 --quiet --out ";
+  REQUIRE(billiard(common + (dir / "one").string() + " --threads 1").status == 0);
+  REQUIRE(billiard(common + (dir / "two").string() + " --threads 2").status == 0);
+  const auto a = read_file(dir / "one" / "energies.npy");
+  CHECK(a.size() == 128 + 2000 * 6 * 8);
+  CHECK(a == read_file(dir / "two" / "energies.npy"));
+}
+
 TEST_CASE("a run resumed from its checkpoint equals an uninterrupted run") {
   const auto dir = scratch("resume");
   const std::string common = "run scenes/clover-free.yaml --particles 5000 --time 20 --quiet --threads 2 --out ";
