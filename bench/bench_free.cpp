@@ -82,15 +82,9 @@ std::pair<double, std::uint64_t> throughput(const geometry::Region2& region, dou
   const std::size_t particles = 64;
   // At speed 1 a particle meets a wall every λ on average.
   opt.record_times = {collisions / double(particles) * geometry::mean_free_path(geometry::measures_of(region))};
-  dynamics::EnsembleResult res;
-  res.energies.resize(particles);
-  res.logs.resize(particles);
-  auto initial = [&](std::size_t i) {
-    dynamics::ParticleRng rng(1, i);
-    return flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
-  };
+  const auto initial = dynamics::microcanonical(table, flight, 1.0, 1);
   const auto start = std::chrono::steady_clock::now();
-  dynamics::run_particles(table, flight, initial, opt, 0, particles, 1, res);
+  const auto res = dynamics::run_ensemble(table, flight, initial, opt, particles, 1);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return {double(res.collisions()) / seconds, res.escapes()};
 }

@@ -30,14 +30,9 @@ int main(int argc, char** argv) {
     dynamics::RunOptions opt;
     opt.record_times = {per_shape / double(particles) * lambda};
     opt.verify_every_flight = true;
-    dynamics::EnsembleResult res;
-    res.energies.resize(particles);
-    res.logs.resize(particles);
-    auto initial = [&](std::size_t i) {
-      dynamics::ParticleRng rng(99, i);
-      return dynamics::sample_microcanonical(table, 1.0, rng);
-    };
-    dynamics::run_particles(table, dynamics::FreeFlight{}, initial, opt, 0, particles, 2, res);
+    const dynamics::FreeFlight flight;
+    const auto res = dynamics::run_ensemble(table, flight, dynamics::microcanonical(table, flight, 1.0, 99), opt,
+                                            particles, 2);
     double worst = 0;
     for (double e : res.energies) worst = std::max(worst, std::abs(e - 0.5) / 0.5);
     fmt::print("{:<12} {:>12} {:>8} {:>16.2e}\n", shape.region.name, res.collisions(), res.escapes(), worst);

@@ -115,11 +115,9 @@ EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& 
   opt.record_times = scene.record_times;
   opt.mass = scene.mass;
   opt.verify_every_flight = args.verify;
-  const double speed = std::sqrt(2 * scene.energy / scene.mass);
+  const auto sampled = dynamics::microcanonical(table, flight, std::sqrt(2 * scene.energy / scene.mass), scene.seed);
   auto initial = [&](std::size_t i) {
-    if (!scene.initial_states.empty()) return flight.start(scene.initial_states[i]);
-    dynamics::ParticleRng rng(scene.seed, i);
-    return flight.start(dynamics::sample_microcanonical(table, speed, rng));
+    return scene.initial_states.empty() ? sampled(i) : flight.start(scene.initial_states[i]);
   };
   const std::size_t n = scene.particles, m = opt.record_times.size();
   EnsembleResult result;

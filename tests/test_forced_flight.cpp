@@ -157,14 +157,7 @@ TEST_CASE("the paper's clover at omega = 320 pi: <dE> and Var(dE) match g1 dt an
   const std::size_t n = 20000;
   dynamics::RunOptions opt;
   opt.record_times = {dt};
-  dynamics::EnsembleResult res;
-  res.energies.resize(n);
-  res.logs.resize(n);
-  auto initial = [&](std::size_t i) {
-    dynamics::ParticleRng rng(2021, i);
-    return flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
-  };
-  dynamics::run_particles(table, flight, initial, opt, 0, n, 2, res);
+  const auto res = dynamics::run_ensemble(table, flight, dynamics::microcanonical(table, flight, 1.0, 2021), opt, n, 2);
   REQUIRE(res.escapes() == 0);
   double mean = 0, m2 = 0, m4 = 0;
   for (double e : res.energies) mean += e - E0;

@@ -36,14 +36,9 @@ RateCheck collision_rate(const std::string& path, std::size_t particles, double 
   dynamics::RunOptions opt;
   opt.record_times = {T};
   opt.verify_every_flight = true;
-  dynamics::EnsembleResult res;
-  res.energies.resize(particles);
-  res.logs.resize(particles);
-  auto initial = [&](std::size_t i) {
-    dynamics::ParticleRng rng(2024, i);
-    return dynamics::sample_microcanonical(table, 1.0, rng);
-  };
-  dynamics::run_particles(table, dynamics::FreeFlight{}, initial, opt, 0, particles, 2, res);
+  const dynamics::FreeFlight flight;
+  const auto res = dynamics::run_ensemble(table, flight, dynamics::microcanonical(table, flight, 1.0, 2024), opt,
+                                          particles, 2);
   double sum = 0, sum2 = 0;
   for (const auto& l : res.logs) {
     sum += double(l.collisions);

@@ -1,6 +1,7 @@
 #include "billiards/dynamics/scene.hpp"
 
 #include "billiards/dynamics/table.hpp"
+#include "billiards/geometry/yaml_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -8,7 +9,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <sstream>
 
 namespace billiards::dynamics {
@@ -26,50 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class SceneReader {
- public:
-  SceneReader(std::string file, Expressions& expr) : file_(std::move(file)), expr_(expr) {}
-
-  int line(const YAML::Node& n) const { return n.Mark().line + 1; }
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& msg) const {
-    throw InputError(file_, line(n), msg);
-  }
-  void expect_keys(const YAML::Node& map, std::initializer_list<const char*> allowed,
-                   const std::string& what) const {
-    if (!map.IsMap()) fail(map, what + " must be a mapping");
-    const std::set<std::string> ok(allowed.begin(), allowed.end());
-    for (const auto& kv : map)
-      if (!ok.count(kv.first.as<std::string>()))
-        fail(kv.first, "unknown key '" + kv.first.as<std::string>() + "' in " + what);
-  }
-  YAML::Node required(const YAML::Node& map, const char* key, const std::string& what) const {
-    if (!map[key]) fail(map, what + " needs '" + key + "'");
-    return map[key];
-  }
-  double number(const YAML::Node& n) const {
-    if (!n.IsScalar()) fail(n, "expected a number or an expression");
-    return expr_.evaluate(n.Scalar(), file_, line(n));
-  }
-  double positive(const YAML::Node& n, const std::string& what) const {
-    const double v = number(n);
-    if (!(v > 0)) fail(n, what + " must be positive");
-    return v;
-  }
-  Vec2 vector(const YAML::Node& n) const {
-    if (!n.IsSequence() || n.size() != 2) fail(n, "expected a vector [x, y]");
-    return {number(n[0]), number(n[1])};
-  }
-  std::size_t count(const YAML::Node& n, const std::string& what) const {
-    const double v = number(n);
-    if (!(v >= 1) || v != std::floor(v) || v > 1e12) fail(n, what + " must be a whole number ≥ 1");
-    return std::size_t(v);
-  }
-  const std::string& file() const { return file_; }
-
- private:
-  std::string file_;
-  Expressions& expr_;
-};
+using SceneReader = YamlReader;
 
 Force read_force(const SceneReader& r, const YAML::Node& n) {
   Force f;
@@ -79,13 +36,13 @@ Force read_force(const SceneReader& r, const YAML::Node& n) {
   if (const YAML::Node c = n["constant"]) {
     r.expect_keys(c, {"amplitude"}, "a constant force");
     f.kind = Force::Kind::constant;
-    f.amplitude = r.vector(r.required(c, "amplitude", "a constant force"));
+    f.amplitude = r.point(r.required(c, "amplitude", "a constant force"));
     return f;
   }
   const YAML::Node p = n["periodic"];
   r.expect_keys(p, {"amplitude", "omega", "phase"}, "a periodic force");
   f.kind = Force::Kind::periodic;
-  f.amplitude = r.vector(r.required(p, "amplitude", "a periodic force"));
+  f.amplitude = r.point(r.required(p, "amplitude", "a periodic force"));
   f.omega = r.positive(r.required(p, "omega", "a periodic force"), "omega");
   f.phase = p["phase"] ? r.number(p["phase"]) : 0.0;
   return f;

@@ -3,6 +3,7 @@
 
 #include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/validate.hpp"
+#include "billiards/geometry/yaml_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -10,7 +11,6 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
-#include <set>
 #include <sstream>
 
 namespace billiards::geometry {
@@ -21,54 +21,7 @@ namespace {
 /// far above rounding of expressions like 2/sqrt(3), far below any deliberate gap.
 constexpr double on_curve_tolerance = 1e-9;
 
-/// Reads one YAML document with file/line-aware accessors.
-class Reader {
- public:
-  Reader(std::string file, Expressions& expr) : file_(std::move(file)), expr_(expr) {}
-
-  int line(const YAML::Node& n) const { return n.Mark().line + 1; }
-  [[noreturn]] void fail(const YAML::Node& n, const std::string& msg) const {
-    throw InputError(file_, line(n), msg);
-  }
-  SourceRef ref(const YAML::Node& n) const { return {file_, line(n)}; }
-  const std::string& file() const { return file_; }
-
-  void expect_keys(const YAML::Node& map, std::initializer_list<const char*> allowed,
-                   const std::string& what) const {
-    if (!map.IsMap()) fail(map, what + " must be a mapping");
-    const std::set<std::string> ok(allowed.begin(), allowed.end());
-    for (const auto& kv : map) {
-      const auto key = kv.first.as<std::string>();
-      if (!ok.count(key)) {
-        std::string list;
-        for (const auto* k : allowed) list += std::string(list.empty() ? "" : ", ") + k;
-        fail(kv.first, "unknown key '" + key + "' in " + what + " (expected one of: " + list + ")");
-      }
-    }
-  }
-  YAML::Node required(const YAML::Node& map, const char* key, const std::string& what) const {
-    const YAML::Node n = map[key];
-    if (!n) fail(map, what + " needs '" + key + "'");
-    return n;
-  }
-  double number(const YAML::Node& n) const {
-    if (!n.IsScalar()) fail(n, "expected a number or an expression");
-    return expr_.evaluate(n.Scalar(), file_, line(n));
-  }
-  double positive(const YAML::Node& n, const std::string& what) const {
-    const double v = number(n);
-    if (!(v > 0)) fail(n, what + " must be positive, got " + std::to_string(v));
-    return v;
-  }
-  Vec2 point(const YAML::Node& n) const {
-    if (!n.IsSequence() || n.size() != 2) fail(n, "expected a point [x, y]");
-    return {number(n[0]), number(n[1])};
-  }
-
- private:
-  std::string file_;
-  Expressions& expr_;
-};
+using Reader = YamlReader;
 
 struct Circle {
   Vec2 center;

@@ -141,4 +141,25 @@ void run_particles(const Table& table, const Flight& flight, const Initial& init
   if (progress) progress(done);
 }
 
+/// Runs a whole ensemble of `particles` particles.
+template <class Flight, class Initial>
+EnsembleResult run_ensemble(const Table& table, const Flight& flight, const Initial& initial, const RunOptions& opt,
+                            std::size_t particles, int threads) {
+  EnsembleResult result;
+  result.energies.resize(particles * opt.record_times.size());
+  result.logs.resize(particles);
+  run_particles(table, flight, initial, opt, 0, particles, threads, result);
+  return result;
+}
+
+/// Initial conditions of a microcanonical ensemble at the given speed: particle i is drawn from
+/// ParticleRng(seed, i).
+template <class Flight>
+auto microcanonical(const Table& table, const Flight& flight, double speed, std::uint64_t seed) {
+  return [&table, flight, speed, seed](std::size_t i) {
+    ParticleRng rng(seed, i);
+    return flight.start(sample_microcanonical(table, speed, rng));
+  };
+}
+
 }  // namespace billiards::dynamics

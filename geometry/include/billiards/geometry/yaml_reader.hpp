@@ -1,0 +1,71 @@
+// Reading YAML input files (shapes, scenes) with errors that name the file and the line.
+// Internal to the libraries that read files; users include shape_file.hpp or scene.hpp.
+#pragma once
+
+#include "billiards/geometry/expression.hpp"
+#include "billiards/geometry/input_error.hpp"
+#include "billiards/geometry/pieces.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+
+namespace billiards {
+
+/// File/line-aware accessors over one YAML document whose numbers are expressions.
+class YamlReader {
+ public:
+  YamlReader(std::string file, Expressions& expr) : file_(std::move(file)), expr_(expr) {}
+
+  const std::string& file() const { return file_; }
+  int line(const YAML::Node& n) const { return n.Mark().line + 1; }
+  geometry::SourceRef ref(const YAML::Node& n) const { return {file_, line(n)}; }
+  [[noreturn]] void fail(const YAML::Node& n, const std::string& msg) const {
+    throw InputError(file_, line(n), msg);
+  }
+
+  /// Fails on a key not in `allowed`, listing the allowed ones.
+  void expect_keys(const YAML::Node& map, std::initializer_list<const char*> allowed,
+                   const std::string& what) const {
+    if (!map.IsMap()) fail(map, what + " must be a mapping");
+    const std::set<std::string> ok(allowed.begin(), allowed.end());
+    for (const auto& kv : map) {
+      const auto key = kv.first.as<std::string>();
+      if (ok.count(key)) continue;
+      std::string list;
+      for (const auto* k : allowed) list += std::string(list.empty() ? "" : ", ") + k;
+      fail(kv.first, "unknown key '" + key + "' in " + what + " (expected one of: " + list + ")");
+    }
+  }
+  YAML::Node required(const YAML::Node& map, const char* key, const std::string& what) const {
+    const YAML::Node n = map[key];
+    if (!n) fail(map, what + " needs '" + key + "'");
+    return n;
+  }
+  double number(const YAML::Node& n) const {
+    if (!n.IsScalar()) fail(n, "expected a number or an expression");
+    return expr_.evaluate(n.Scalar(), file_, line(n));
+  }
+  double positive(const YAML::Node& n, const std::string& what) const {
+    const double v = number(n);
+    if (!(v > 0)) fail(n, what + " must be positive, got " + std::to_string(v));
+    return v;
+  }
+  std::size_t count(const YAML::Node& n, const std::string& what) const {
+    const double v = number(n);
+    if (!(v >= 1) || v != std::floor(v) || v > 1e12) fail(n, what + " must be a whole number ≥ 1");
+    return std::size_t(v);
+  }
+  geometry::Vec2 point(const YAML::Node& n) const {
+    if (!n.IsSequence() || n.size() != 2) fail(n, "expected a vector [x, y]");
+    return {number(n[0]), number(n[1])};
+  }
+
+ private:
+  std::string file_;
+  Expressions& expr_;
+};
+
+}  // namespace billiards
