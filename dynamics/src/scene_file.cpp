@@ -153,6 +153,14 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
   scene.time = ov.time ? *ov.time : r.positive(r.required(run, "time", "'run'"), "run.time");
   if (!(scene.time > 0)) throw InputError("--time", 0, "the run time must be positive");
   scene.record_times = read_record(r, run["record"], scene.time);
+  if (ov.record) {
+    scene.record_times = {0.0};
+    for (double t : *ov.record) {
+      if (!(t > scene.record_times.back())) throw InputError("--record", 0, "record times must be positive and increasing");
+      if (t < scene.time) scene.record_times.push_back(t);
+    }
+    scene.record_times.push_back(scene.time);
+  }
   scene.seed = ov.seed ? *ov.seed : run["seed"] ? std::uint64_t(r.number(run["seed"])) : 1;
 
   const YAML::Node init = r.required(doc, "initial", "a scene file");

@@ -46,6 +46,7 @@ struct SceneOverrides {
   Overrides set;  // --set NAME=VALUE: scene parameters first, then shape parameters
   std::optional<std::size_t> particles;
   std::optional<double> time, omega;
+  std::optional<std::vector<double>> record;  // record times (0 and the end are added)
   std::optional<std::uint64_t> seed;
   std::optional<std::string> output_dir;
 };
