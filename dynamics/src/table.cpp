@@ -9,13 +9,6 @@ namespace billiards::dynamics {
 
 namespace {
 
-std::pair<Vec2, Vec2> box_of(const geometry::Piece& p) {
-  geometry::Region2 one;
-  one.outer.pieces = {p};
-  const auto m = geometry::measures_of(one);
-  return {m.bbox_lo, m.bbox_hi};
-}
-
 /// Signed number of times the horizontal ray from p to +∞ crosses the segment upward
 /// (half-open rule on y, so a vertex is counted once).
 int crossings(const SegmentWall& w, const Vec2& p) {
@@ -66,7 +59,7 @@ Table::Table(const geometry::Region2& region) {
       if (const auto* s = std::get_if<geometry::Segment>(&p)) {
         segments_.emplace_back(*s);
         sources_.push_back(loop->where[i]);
-        boxes_.push_back(box_of(p));
+        boxes_.push_back(geometry::bounding_box(p));
       } else {
         arcs.emplace_back(&p, loop->where[i]);
       }
@@ -75,7 +68,7 @@ Table::Table(const geometry::Region2& region) {
   for (const auto& [p, src] : arcs) {
     arcs_.emplace_back(std::get<geometry::Arc>(*p));
     sources_.push_back(src);
-    boxes_.push_back(box_of(*p));
+    boxes_.push_back(geometry::bounding_box(*p));
   }
   const auto m = geometry::measures_of(region);
   lo_ = m.bbox_lo;

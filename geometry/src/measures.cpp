@@ -34,23 +34,23 @@ std::pair<double, double> angle_interval(const Arc& a) {
                       : std::pair{a.start + a.sweep, a.start};
 }
 
-void extend_bbox(Eigen::Vector2d& lo, Eigen::Vector2d& hi, const Vec2& p) {
+void extend_bbox(Vec2& lo, Vec2& hi, const Vec2& p) {
   lo = lo.cwiseMin(p);
   hi = hi.cwiseMax(p);
 }
 
-void extend_bbox(Eigen::Vector2d& lo, Eigen::Vector2d& hi, const Piece& p) {
-  extend_bbox(lo, hi, source_of(p));
-  extend_bbox(lo, hi, target_of(p));
-  const auto* a = std::get_if<Arc>(&p);
-  if (!a) return;
-  // Axis-extreme points of the circle whose angle k·π/2 falls inside the arc.
-  const auto [t0, t1] = angle_interval(*a);
-  for (double k = std::ceil(t0 / (pi / 2)); k * (pi / 2) <= t1; ++k)
-    extend_bbox(lo, hi, a->point_at(k * (pi / 2)));
-}
-
 }  // namespace
+
+std::pair<Vec2, Vec2> bounding_box(const Piece& p) {
+  Vec2 lo = source_of(p), hi = lo;
+  extend_bbox(lo, hi, target_of(p));
+  if (const auto* a = std::get_if<Arc>(&p)) {
+    // Axis-extreme points of the circle whose angle k·π/2 falls inside the arc.
+    const auto [t0, t1] = angle_interval(*a);
+    for (double k = std::ceil(t0 / (pi / 2)); k * (pi / 2) <= t1; ++k) extend_bbox(lo, hi, a->point_at(k * (pi / 2)));
+  }
+  return {lo, hi};
+}
 
 Eigen::Matrix2d boundary_tensor_of(const Piece& p) {
   if (const auto* s = std::get_if<Segment>(&p)) {
@@ -78,8 +78,8 @@ Measures measures_of(const Region2& region) {
   Measures m;
   m.dimension = 2;
   m.boundary_tensor = Eigen::Matrix2d::Zero();
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector2d hi = -lo;
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+  Vec2 hi = -lo;
   for (const Loop* loop : region.loops()) {
     m.volume += signed_area(*loop);  // holes run clockwise: negative area
     for (const Piece& p : loop->pieces) {
@@ -87,7 +87,11 @@ Measures measures_of(const Region2& region) {
       m.boundary_tensor += boundary_tensor_of(p);
     }
   }
-  for (const Piece& p : region.outer.pieces) extend_bbox(lo, hi, p);
+  for (const Piece& p : region.outer.pieces) {
+    const auto [a, b] = bounding_box(p);
+    extend_bbox(lo, hi, a);
+    extend_bbox(lo, hi, b);
+  }
   m.bbox_lo = lo;
   m.bbox_hi = hi;
   return m;

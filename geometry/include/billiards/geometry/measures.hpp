@@ -31,5 +31,8 @@ Measures measures_of(const Region2& region);
 double signed_area(const Loop& loop);
 /// Contribution of one piece to ∫ n nᵀ ds.
 Eigen::Matrix2d boundary_tensor_of(const Piece& p);
+/// Exact axis-aligned bounding box of one piece (arcs: their endpoints and the axis-extreme
+/// points within their range), as (lower corner, upper corner).
+std::pair<Vec2, Vec2> bounding_box(const Piece& p);
 
 }  // namespace billiards::geometry
