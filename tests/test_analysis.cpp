@@ -114,3 +114,29 @@ TEST_CASE("Fokker-Planck solution: normalized, and its moments grow as the equat
     CHECK(slope == Approx(root_mean).epsilon(1e-5));
   }
 }
+
+TEST_CASE("numerical Fokker-Planck (Chang-Cooper) against the analytic solution: L1 <= 1e-3") {
+  const double E0 = 0.5;
+  for (int d : {2, 3}) {
+    auto g1 = [](double E) { return std::sqrt(E); };  // in units of s = C t
+    auto g2 = [d](double E) { return 4 * std::pow(E, 1.5) / (d + 1); };
+    for (double s : {0.1, 1.0, 10.0}) {
+      INFO("d = " << d << ", s = " << s);
+      const double s0 = s / 10;
+      const auto grid = analysis::quartic_root_grid(40 * E0 + 50 * s * s, 4000);
+      std::vector<double> eta(grid.cells());
+      for (std::size_t i = 0; i < eta.size(); ++i) eta[i] = analysis::fokker_planck_eta(grid.center(i), s0, E0, d);
+      const auto out = analysis::evolve_fokker_planck(grid, eta, g1, g2, s - s0, 4000);
+      double l1 = 0, mass0 = 0, mass1 = 0, negative = 0;
+      for (std::size_t i = 0; i < out.size(); ++i) {
+        l1 += std::abs(out[i] - analysis::fokker_planck_eta(grid.center(i), s, E0, d)) * grid.width(i);
+        mass0 += eta[i] * grid.width(i);
+        mass1 += out[i] * grid.width(i);
+        negative = std::min(negative, out[i]);
+      }
+      CHECK(l1 <= 1e-3);
+      CHECK(std::abs(mass1 - mass0) < 1e-10);  // conservative, to rounding over 4000 solves
+      CHECK(negative >= 0);                    // positive
+    }
+  }
+}

@@ -3,6 +3,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <sstream>
+
 namespace fs = std::filesystem;
 
 TEST_CASE("plot writes a PNG of the shape and its trajectory, and nothing on error") {
@@ -28,4 +31,33 @@ TEST_CASE("coeffs --json gives the paper's clover numbers") {
   const auto free = billiard("coeffs scenes/clover-free.yaml");
   CHECK(free.status != 0);
   CHECK_THAT(free.output, Catch::Contains("coeffs needs a periodic force"));
+}
+
+TEST_CASE("fp writes the numerical and analytic Fokker-Planck solutions, which agree in L1") {
+  const auto dir = scratch("fp");
+  const auto csv = dir / "fp.csv";
+  REQUIRE(billiard("fp scenes/clover-driven.yaml --times 10,100,1000 -o " + csv.string()).status == 0);
+  std::istringstream in(read_file(csv));
+  std::string line;
+  std::getline(in, line);
+  CHECK(line == "E,eta_numerical(t=10),eta_analytic(t=10),eta_numerical(t=100),eta_analytic(t=100),"
+                "eta_numerical(t=1000),eta_analytic(t=1000)");
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream fields(line);
+    std::vector<double> row(7);
+    for (double& x : row) fields >> x;
+    rows.push_back(row);
+  }
+  REQUIRE(rows.size() == 4000);
+  for (int k = 0; k < 3; ++k) {
+    double l1 = 0;  // over the cell centres written in the file
+    for (std::size_t i = 1; i < rows.size(); ++i)
+      l1 += std::abs(rows[i][1 + 2 * k] - rows[i][2 + 2 * k]) * (rows[i][0] - rows[i - 1][0]);
+    INFO("time column " << k);
+    CHECK(l1 < 1e-3);
+  }
+  CHECK(billiard("fp scenes/clover-free.yaml --times 1 -o " + (dir / "free.csv").string()).status != 0);
+  CHECK_FALSE(fs::exists(dir / "free.csv"));
 }
