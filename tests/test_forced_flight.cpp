@@ -56,11 +56,6 @@ double brute_force_root(F f, double h, double t_max) {
   return -1;
 }
 
-geometry::Region2 one_piece(const geometry::Piece& p) {
-  geometry::Region2 r;
-  r.outer.pieces = {p};
-  return r;
-}
 
 }  // namespace
 
