@@ -56,7 +56,6 @@ double brute_force_root(F f, double h, double t_max) {
   return -1;
 }
 
-
 }  // namespace
 
 TEST_CASE("the closed-form flight matches MPFR, with the phase reduced at large omega t") {
