@@ -2,17 +2,59 @@
 """Draws a shape (and a trajectory) from the JSON written by `billiard plot`.
 
     plot_shape.py INPUT.json OUTPUT.png
+
+INPUT.json: {"title": str, "loops": [[[x, y], ...], ...] (outer boundary first, then the
+holes, each a closed polyline without its repeated first point), "trajectory": [[x, y], ...]
+(start point, then the collision points; may be empty)}.
 """
 import json
-import os
 import sys
 
-import matplotlib
-
+try:
+    import matplotlib
+except ImportError:
+    sys.exit("plot_shape.py: matplotlib is missing (Debian: apt install python3-matplotlib)")
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.path import Path  # noqa: E402
 from matplotlib.patches import PathPatch  # noqa: E402
+from matplotlib.path import Path  # noqa: E402
+
+FILL, WALL, PATH = "#dce8f3", "#1f3b57", "#c0392b"
+# Above this many collisions the bounce points would only clutter the picture.
+MAX_MARKED_BOUNCES = 200
+
+
+def region_patch(loops):
+    """One compound path: the outer loop runs counter-clockwise and the holes clockwise, so
+    the fill leaves the holes empty (white) under either fill rule."""
+    vertices, codes = [], []
+    for loop in loops:
+        vertices += loop + [loop[0]]
+        codes += [Path.MOVETO] + [Path.LINETO] * (len(loop) - 1) + [Path.CLOSEPOLY]
+    return PathPatch(Path(vertices, codes), facecolor=FILL, edgecolor=WALL, lw=1.6,
+                     joinstyle="round", zorder=1)
+
+
+def draw_trajectory(ax, points):
+    xs, ys = zip(*points)
+    bounces = len(points) - 1
+    # Long trajectories get thinner, fainter lines, so that they show where the particle
+    # goes often instead of one solid blot.
+    lw = 0.9 if bounces <= MAX_MARKED_BOUNCES else 0.5
+    alpha = min(0.75, max(0.2, 150 / bounces))
+    ax.plot(xs, ys, "-", color=PATH, lw=lw, alpha=alpha, zorder=2)
+    if bounces <= MAX_MARKED_BOUNCES:
+        ax.plot(xs[1:], ys[1:], "o", color=PATH, ms=2.2, zorder=3)
+    ax.plot(xs[:1], ys[:1], "o", color=PATH, mec="white", mew=1, ms=7, zorder=4)
+
+
+def figure_for(loops):
+    """A figure with the shape's aspect ratio, 6.5 inches along its longer side."""
+    xs = [x for x, _ in loops[0]]
+    ys = [y for _, y in loops[0]]
+    aspect = (max(ys) - min(ys)) / (max(xs) - min(xs))
+    width = 6.5 if aspect <= 1 else max(3.5, 6.5 / aspect)
+    return plt.subplots(figsize=(width, width * aspect + 0.6))
 
 
 def main():
@@ -20,25 +62,22 @@ def main():
         sys.exit(__doc__)
     with open(sys.argv[1]) as f:
         data = json.load(f)
-    fig, ax = plt.subplots(figsize=(6, 6))
-    # One compound path: the outer loop and the holes (even-odd fill leaves the holes empty).
-    vertices, codes = [], []
-    for loop in data["loops"]:
-        vertices += loop + [loop[0]]
-        codes += [Path.MOVETO] + [Path.LINETO] * (len(loop) - 1) + [Path.CLOSEPOLY]
-    ax.add_patch(PathPatch(Path(vertices, codes), facecolor="#e8eef4", edgecolor="#1f3b57", lw=1.5))
+    fig, ax = figure_for(data["loops"])
+    ax.add_patch(region_patch(data["loops"]))
     if data["trajectory"]:
-        xs, ys = zip(*data["trajectory"])
-        ax.plot(xs, ys, "-", color="#c0392b", lw=0.6, alpha=0.8)
-        ax.plot(xs[:1], ys[:1], "o", color="#c0392b", ms=4)
+        draw_trajectory(ax, data["trajectory"])
     ax.set_aspect("equal")
     ax.autoscale_view()
-    ax.margins(0.05)
+    ax.margins(0.04)
+    ax.tick_params(labelsize=8, colors="#555555")
+    for side in ax.spines.values():
+        side.set_color("#bbbbbb")
     ax.set_title(data["title"], fontsize=10)
-    fig.tight_layout()
-    tmp = sys.argv[2] + ".tmp.png"
-    fig.savefig(tmp, dpi=130)
-    os.replace(tmp, sys.argv[2])
+    try:
+        # Cropped to the drawing: the figure size only sets the scale.
+        fig.savefig(sys.argv[2], dpi=150, format="png", bbox_inches="tight", pad_inches=0.1)
+    except OSError as e:
+        sys.exit(f"plot_shape.py: cannot write {sys.argv[2]}: {e.strerror}")
 
 
 if __name__ == "__main__":

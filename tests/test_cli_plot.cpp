@@ -1,12 +1,27 @@
-// `billiard plot` and `billiard coeffs` from the command line.
+// `billiard plot`, `billiard coeffs` and `billiard fp` from the command line.
 #include "cli_helpers.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <sstream>
 
 namespace fs = std::filesystem;
+
+/// Width and height from a PNG's IHDR chunk (big-endian, right after the signature).
+static std::pair<unsigned, unsigned> png_size(const std::string& bytes) {
+  auto be32 = [&](std::size_t i) {
+    unsigned v = 0;
+    for (std::size_t k = i; k < i + 4; ++k) v = v << 8 | static_cast<unsigned char>(bytes[k]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+static std::size_t files_in(const fs::path& dir) {
+  return std::distance(fs::directory_iterator(dir), fs::directory_iterator());
+}
 
 TEST_CASE("plot writes a PNG of the shape and its trajectory, and nothing on error") {
   const auto dir = scratch("plot");
@@ -14,12 +29,42 @@ TEST_CASE("plot writes a PNG of the shape and its trajectory, and nothing on err
   const auto r = billiard("plot shapes/clover.yaml --trajectory 50 -o " + png.string());
   REQUIRE(r.status == 0);
   const std::string bytes = read_file(png);
+  REQUIRE(bytes.size() > 24);
   CHECK(bytes.substr(0, 8) == "\x89PNG\r\n\x1a\n");
-  CHECK(bytes.size() > 20000);
+  CHECK(bytes.size() > 20000);  // a drawing, not an empty canvas
+  CHECK(bytes.size() < 5000000);
+  const auto [width, height] = png_size(bytes);
+  CHECK(width > 400);
+  CHECK(width < 3000);
+  CHECK(height > 400);
+  CHECK(height < 3000);
+  CHECK(files_in(dir) == 1);  // no temporary file left next to it
+
   const auto bad = billiard("plot shapes/no-such-shape.yaml -o " + (dir / "bad.png").string());
   CHECK(bad.status != 0);
   CHECK_THAT(bad.output, Catch::Contains("cannot open shape file"));
   CHECK_FALSE(fs::exists(dir / "bad.png"));
+}
+
+TEST_CASE("plot: a failing drawing leaves no PNG, a missing python is named") {
+  const auto dir = scratch("plot-failures");
+  // A stand-in for plot_shape.py that writes part of its output, then fails.
+  const auto scripts = dir / "scripts";
+  fs::create_directories(scripts);
+  write_file(scripts / "plot_shape.py", "import sys\nopen(sys.argv[2], 'w').write('half')\nsys.exit(3)\n");
+  setenv("BILLIARDS_SCRIPTS", scripts.c_str(), 1);
+  const auto failed = billiard("plot shapes/sinai.yaml -o " + (dir / "sinai.png").string());
+  unsetenv("BILLIARDS_SCRIPTS");
+  CHECK(failed.status != 0);
+  CHECK_THAT(failed.output, Catch::Contains("drawing failed"));
+  CHECK(files_in(dir) == 1);  // only the scripts directory: no PNG, no temporary
+
+  setenv("BILLIARDS_PYTHON", "/nonexistent/python3", 1);
+  const auto no_python = billiard("plot shapes/sinai.yaml -o " + (dir / "sinai.png").string());
+  unsetenv("BILLIARDS_PYTHON");
+  CHECK(no_python.status != 0);
+  CHECK_THAT(no_python.output, Catch::Contains("cannot run /nonexistent/python3"));
+  CHECK(files_in(dir) == 1);
 }
 
 TEST_CASE("coeffs --json gives the paper's clover numbers") {
