@@ -1,6 +1,7 @@
 #include "billiards/analysis/coefficients.hpp"
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 
@@ -65,6 +66,25 @@ Coefficients coefficients(const geometry::Measures& m, const Drive& drive, doubl
     c.warnings.push_back(fmt::format("v_E/(omega lambda) = {:.3g} is not small: a period is not short against a "
                                      "free flight (the paper's condition 2)", c.length_ratio));
   return c;
+}
+
+void to_json(nlohmann::json& j, const Coefficients& c) {
+  j = {{"dimension", c.dimension},
+       {"E", c.energy},
+       {"v_E", c.speed},
+       {"V", c.volume},
+       {"S", c.surface},
+       {"mean_free_path", c.mean_free_path},
+       {"wall_integral", c.wall_integral},
+       {"Sigma", c.density_of_states},
+       {"gamma_E", c.collision_rate_density},
+       {"collision_rate", c.collision_rate},
+       {"C", c.C},
+       {"g1", c.g1},
+       {"g2", c.g2},
+       {"validity_force_ratio", c.force_ratio},
+       {"validity_length_ratio", c.length_ratio},
+       {"warnings", c.warnings}};
 }
 
 }  // namespace billiards::analysis

@@ -1,6 +1,9 @@
 #include "billiards/analysis/fokker_planck.hpp"
 
+#include <boost/math/distributions/non_central_chi_squared.hpp>
 #include <boost/math/special_functions/bessel.hpp>
+
+#include <Eigen/SparseLU>
 
 #include <cmath>
 
@@ -42,11 +45,33 @@ Moments fokker_planck_moments(double s, double E0, int d, int points) {
   return {m0, mean, m2 / m0 - mean * mean};
 }
 
-}  // namespace billiards::analysis
+namespace {
 
-#include <Eigen/SparseLU>
+/// The parameters of X = 2c√E ~ χ'²(k, λ) (see the header).
+struct ChiSquared {
+  double c, k, lambda;
+};
+ChiSquared chi_squared_of(double s, double E0, int d) {
+  const double c = 2.0 * (d + 1) / s;
+  return {c, 2.0 * d, 2 * c * std::sqrt(E0)};
+}
 
-namespace billiards::analysis {
+}  // namespace
+
+EnergyMoments fokker_planck_exact_moments(double s, double E0, int d) {
+  const auto [c, k, lambda] = chi_squared_of(s, E0, d);
+  const double k1 = k + lambda, k2 = 2 * (k + 2 * lambda), k3 = 8 * (k + 3 * lambda), k4 = 48 * (k + 4 * lambda);
+  // E = X²/(4c²): ⟨X²⟩ = κ2 + κ1², Var(X²) = κ4 + 4κ3κ1 + 2κ2² + 4κ2κ1².
+  const double c2 = c * c;
+  return {(k2 + k1 * k1) / (4 * c2), (k4 + 4 * k3 * k1 + 2 * k2 * k2 + 4 * k2 * k1 * k1) / (16 * c2 * c2),
+          k1 / (2 * c)};
+}
+
+double fokker_planck_cdf(double E, double s, double E0, int d) {
+  if (E <= 0) return 0;
+  const auto [c, k, lambda] = chi_squared_of(s, E0, d);
+  return boost::math::cdf(boost::math::non_central_chi_squared(k, lambda), 2 * c * std::sqrt(E));
+}
 
 EnergyGrid quartic_root_grid(double e_max, int cells) {
   EnergyGrid g;

@@ -5,6 +5,7 @@
 #include "billiards/geometry/measures.hpp"
 
 #include <Eigen/Core>
+#include <nlohmann/json_fwd.hpp>
 
 #include <string>
 #include <vector>
@@ -30,10 +31,18 @@ struct Coefficients {
   double collision_rate = 0;         // γ_E S = v/λ
   double C = 0;                      // g1 = C √E, g2 = 4 C E^{3/2}/(d+1)
   double g1 = 0, g2 = 0;
-  double force_ratio = 0;            // F/(m ω v_E): must be ≪ 1
-  double length_ratio = 0;           // v_E/(ω λ): must be ≪ 1
-  std::vector<std::string> warnings;
+  double force_ratio = 0;            // F/(m ω v_E): must be ≪ 1 (the paper's condition 1)
+  // v_E/(ω l): must be ≪ 1 (condition 2), with l taken as the mean free path λ.  The paper's l
+  // is the SHORTEST length of the problem: a wall feature, or a scale on which F varies, that is
+  // shorter than λ makes the true condition stricter than this ratio.
+  double length_ratio = 0;
+  std::vector<std::string> warnings; // one per ratio above validity_threshold
 };
+
+/// nlohmann::json conversion (`nlohmann::json j = c;`), keys: dimension, E, v_E, V, S,
+/// mean_free_path, wall_integral, Sigma, gamma_E, collision_rate, C, g1, g2,
+/// validity_force_ratio, validity_length_ratio, warnings.
+void to_json(nlohmann::json& j, const Coefficients& c);
 
 /// Validity ratios above this are reported as warnings.
 inline constexpr double validity_threshold = 0.1;

@@ -3,6 +3,9 @@
 // paper's eq. B4, from Demers & Jarzynski), written with s = C t.
 #pragma once
 
+#include <functional>
+#include <vector>
+
 namespace billiards::analysis {
 
 /// e⁻ˣ I_ν(x), finite for every x ≥ 0 (Boost.Math below x = 500, the asymptotic series above).
@@ -16,15 +19,25 @@ struct Moments {
   double norm, mean, variance;  // ∫η, ⟨E⟩, Var(E)
 };
 /// Moments of η(·, s) by the trapezoidal rule in u = E^{1/4} (dE = 4u³du), where the integrand
-/// is smooth at E = 0, over E ≤ 40 E0 + 50 s² (η spreads to E ~ s²).
+/// is smooth at E = 0, over E ≤ 40 E0 + 50 s² (η spreads to E ~ s²).  A check of η; the exact
+/// values are fokker_planck_exact_moments.
 Moments fokker_planck_moments(double s, double E0, int d, int points = 200000);
 
-}  // namespace billiards::analysis
+// η(·, s) is a noncentral chi-squared law in disguise: with c = 2(d+1)/s, X = 2c√E has the
+// density of χ'²(k = 2d, λ = 2c√E0) (substitute y = √E in eq. B4 and compare with the
+// χ'² density ½ e^{−(x+λ)/2} (x/λ)^{k/4−1/2} I_{k/2−1}(√(λx))).  Its moments and CDF are
+// therefore exact, in closed form.
 
-#include <functional>
-#include <vector>
-
-namespace billiards::analysis {
+struct EnergyMoments {
+  double mean = 0;       // ⟨E⟩
+  double variance = 0;   // Var(E)
+  double mean_root = 0;  // ⟨√E⟩ = ⟨v_E⟩ √(m/2), which drives d⟨E⟩/ds = ⟨√E⟩
+};
+/// Exact moments of η(·, s) from the cumulants κ_n = 2^{n−1}(n−1)!(k + nλ) of X; Var(E) is
+/// written as a sum of positive terms, so it stays accurate for s → 0.
+EnergyMoments fokker_planck_exact_moments(double s, double E0, int d);
+/// ∫_0^E η(E', s) dE', exact (Boost's noncentral chi-squared CDF), for Kolmogorov–Smirnov tests.
+double fokker_planck_cdf(double E, double s, double E0, int d);
 
 /// Cell-averaged η on a grid in energy: cell i spans [edges[i], edges[i+1]].
 struct EnergyGrid {
