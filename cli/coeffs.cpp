@@ -20,25 +20,6 @@ std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene
   return analysis::coefficients(geometry::measures_of(scene.shape.region), drive, scene.energy);
 }
 
-nlohmann::json to_json(const analysis::Coefficients& c) {
-  return {{"dimension", c.dimension},
-          {"E", c.energy},
-          {"v_E", c.speed},
-          {"V", c.volume},
-          {"S", c.surface},
-          {"mean_free_path", c.mean_free_path},
-          {"wall_integral", c.wall_integral},
-          {"Sigma", c.density_of_states},
-          {"gamma_E", c.collision_rate_density},
-          {"collision_rate", c.collision_rate},
-          {"C", c.C},
-          {"g1", c.g1},
-          {"g2", c.g2},
-          {"validity_force_ratio", c.force_ratio},
-          {"validity_length_ratio", c.length_ratio},
-          {"warnings", c.warnings}};
-}
-
 void print_prediction(const analysis::Coefficients& c, double dt) {
   fmt::print("prediction (E = {:g}): lambda = {:.6g}, wall integral = {:.6g}, C = {:.6g}\n", c.energy,
              c.mean_free_path, c.wall_integral, c.C);
@@ -60,7 +41,7 @@ void add_coeffs(CLI::App& app) {
   auto args = std::make_shared<Args>();
   cmd->add_option("scene", args->scene, "scene file (YAML)")->required();
   cmd->add_flag("--json", args->json, "print JSON");
-  cmd->add_option("--omega", args->overrides.omega, "drive frequency");
+  cmd->add_option("--omega", args->overrides.omega, "drive frequency (an expression: 320*pi)")->transform(expression_value);
   add_set_option(cmd, args->set);
   cmd->callback([args] {
     args->overrides.set = parse_overrides(args->set);
@@ -70,7 +51,7 @@ void add_coeffs(CLI::App& app) {
       throw InputError(args->scene, 0,
                        "coeffs needs a periodic force and a microcanonical initial energy (U = 0, uniform F)");
     if (args->json)
-      std::cout << to_json(*c).dump(2) << "\n";
+      std::cout << nlohmann::json(*c).dump(2) << "\n";
     else
       print_prediction(*c, scene.time);
   });

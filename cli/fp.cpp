@@ -74,7 +74,7 @@ void add_fp(CLI::App& app) {
   cmd->add_option("--times", args->times, "times t1,t2,... at which to write eta(E, t)")->delimiter(',')->required();
   cmd->add_option("-o,--output", args->output, "CSV file to write")->required();
   cmd->add_option("--cells", args->cells, "energy cells (default 4000)")->check(CLI::Range(10, 10000000));
-  cmd->add_option("--omega", args->overrides.omega, "drive frequency");
+  cmd->add_option("--omega", args->overrides.omega, "drive frequency (an expression: 320*pi)")->transform(expression_value);
   add_set_option(cmd, args->set);
   cmd->callback([args] { fp(*args); });
 }

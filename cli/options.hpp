@@ -7,6 +7,7 @@
 #include "billiards/geometry/shape_file.hpp"
 
 #include <CLI/CLI.hpp>
+#include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include <optional>
@@ -20,6 +21,18 @@ inline void add_set_option(CLI::App* cmd, std::vector<std::string>& target) {
   cmd->add_option("--set", target, "override a parameter: NAME=VALUE (an expression); repeatable");
 }
 
+/// Lets a numeric option take an expression ("320*pi", "2^10"), as numbers in shape files do.
+inline const CLI::Validator expression_value(
+    [](std::string& text) {
+      try {
+        text = fmt::format("{:.17g}", Expressions().evaluate(text, "", 0));
+        return std::string();
+      } catch (const InputError& e) {
+        return std::string(e.what());
+      }
+    },
+    "EXPR");
+
 inline Overrides parse_overrides(const std::vector<std::string>& assignments) {
   Overrides out;
   for (const auto& a : assignments) add_override(out, a);
@@ -31,7 +44,6 @@ nlohmann::json shape_info(const geometry::Shape& shape);
 
 /// The theory's prediction for a scene (periodic drive, microcanonical start), if it has one.
 std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene);
-nlohmann::json to_json(const analysis::Coefficients& c);
 void print_prediction(const analysis::Coefficients& c, double dt);
 
 }  // namespace billiards::cli

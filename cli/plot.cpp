@@ -3,6 +3,7 @@
 // the dynamics uses; matplotlib (scripts/plot_shape.py) only draws the points it is given.
 #include "commands.hpp"
 #include "options.hpp"
+#include "python.hpp"
 
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/random.hpp"
@@ -11,19 +12,12 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
-
-extern char** environ;
 
 namespace billiards::cli {
 
@@ -83,47 +77,11 @@ struct TempFile {
   }
 };
 
-/// Where plot_shape.py is: $BILLIARDS_SCRIPTS, else the source tree this program was built from.
-fs::path plot_script() {
-  const char* env = std::getenv("BILLIARDS_SCRIPTS");
-  const fs::path script = fs::path(env ? env : BILLIARDS_SOURCE_DIR "/scripts") / "plot_shape.py";
-  if (!fs::is_regular_file(script))
-    throw std::runtime_error(fmt::format("{} not found (set BILLIARDS_SCRIPTS to the directory that holds it)",
-                                         script.string()));
-  return script;
-}
-
-/// Debian's interpreter, which has python3-matplotlib; $BILLIARDS_PYTHON overrides it.
-std::string python() {
-  const char* env = std::getenv("BILLIARDS_PYTHON");
-  return env ? env : "/usr/bin/python3";
-}
-
-/// Runs PYTHON SCRIPT ARGS... directly (no shell, so any path is passed as it is) and waits.
-void run_python(const fs::path& script, const std::vector<std::string>& args) {
-  std::vector<std::string> argv_s = {python(), script.string()};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  if (const int err = posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ))
-    throw std::runtime_error(fmt::format("cannot run {}: {} (set BILLIARDS_PYTHON to a python3 with matplotlib)",
-                                         argv_s[0], std::strerror(err)));
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
-  const std::string how = WIFEXITED(status) ? fmt::format("exit status {}", WEXITSTATUS(status))
-                                            : fmt::format("signal {}", WTERMSIG(status));
-  throw std::runtime_error(fmt::format("drawing failed: {} {} ended with {}", argv_s[0], script.string(), how));
-}
-
 /// Draws `data` into `output`.  The script draws into a temporary file next to `output` that
 /// is renamed into place only on success, so `output` is either the complete picture or
 /// untouched.
 void draw(const nlohmann::json& data, const fs::path& output) {
-  const fs::path script = plot_script();
+  const fs::path script = script_path("plot_shape.py");
   const TempFile json{fs::temp_directory_path() / fmt::format("billiard-plot-{}.json", getpid())};
   std::ofstream out(json.path);
   out << data.dump();

@@ -1,13 +1,12 @@
 // billiard run SCENE: an ensemble run with the prediction before and the measurement after.
+#include "run.hpp"
+
 #include "commands.hpp"
-#include "options.hpp"
-#include "output.hpp"
 #include "progress.hpp"
 
 #include "billiards/analysis/fokker_planck.hpp"
-#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/analysis/statistics.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
-#include "billiards/dynamics/scene.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -15,9 +14,9 @@
 #include <omp.h>
 
 #include <chrono>
-#include <type_traits>
 #include <filesystem>
 #include <fstream>
+#include <type_traits>
 
 namespace billiards::cli {
 
@@ -26,16 +25,6 @@ namespace {
 namespace fs = std::filesystem;
 using dynamics::EnsembleResult;
 using dynamics::Scene;
-
-struct RunArgs {
-  std::string scene;
-  dynamics::SceneOverrides overrides;
-  int threads = 0;
-  bool verify = false;
-  bool quiet = false;
-  std::size_t max_chunks = 0;  // 0: no limit
-  std::vector<std::string> set;
-};
 
 /// Thrown when --max-chunks stops a run early; the checkpoint stays for the next run.
 struct Interrupted {};
@@ -84,23 +73,10 @@ class Checkpoint {
   std::string fingerprint_;
 };
 
-/// Mean and variance of ΔE with their standard errors (the variance's from the fourth moment).
+/// Mean and variance of ΔE with their standard errors.
 nlohmann::json delta_stats(const std::vector<double>& dE) {
-  const double n = double(dE.size());
-  double mean = 0;
-  for (double x : dE) mean += x;
-  mean /= n;
-  double m2 = 0, m4 = 0;
-  for (double x : dE) {
-    const double d2 = (x - mean) * (x - mean);
-    m2 += d2;
-    m4 += d2 * d2;
-  }
-  const double var = m2 / (n - 1);
-  m4 /= n;
-  const double var_of_var = (m4 - var * var * (n - 3) / (n - 1)) / n;
-  return {{"mean_dE", mean}, {"var_dE", var}, {"se_mean_dE", std::sqrt(var / n)},
-          {"se_var_dE", std::sqrt(std::max(0.0, var_of_var))}};
+  const auto m = analysis::sample_moments(dE);
+  return {{"mean_dE", m.mean}, {"var_dE", m.variance}, {"se_mean_dE", m.se_mean}, {"se_var_dE", m.se_variance}};
 }
 
 nlohmann::json fingerprint_of(const Scene& scene) {
@@ -147,14 +123,12 @@ EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& 
   return result;
 }
 
-nlohmann::json summarize(const Scene& scene, const EnsembleResult& r, double seconds, const RunArgs& args) {
-  const std::size_t n = scene.particles, m = scene.record_times.size();
+nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coefficients>& prediction,
+                         const EnsembleResult& r, double seconds, const RunArgs& args) {
+  const std::size_t m = scene.record_times.size();
   nlohmann::json per_time = nlohmann::json::array();
   for (std::size_t k = 0; k < m; ++k) {
-    std::vector<double> dE;
-    for (std::size_t i = 0; i < n; ++i)
-      if (!r.logs[i].escaped) dE.push_back(r.energies[i * m + k] - r.energies[i * m]);
-    nlohmann::json s = delta_stats(dE);
+    nlohmann::json s = delta_stats(r.energy_changes(k, m));
     s["t"] = scene.record_times[k];
     per_time.push_back(s);
   }
@@ -164,17 +138,18 @@ nlohmann::json summarize(const Scene& scene, const EnsembleResult& r, double sec
             {"shape", scene.shape.region.name}, {"shape_parameters", scene.shape.parameters},
             {"force", scene.force.name()}, {"F", {scene.force.amplitude.x(), scene.force.amplitude.y()}},
             {"omega", scene.force.omega}, {"mass", scene.mass}, {"E0", scene.energy},
-            {"particles", n}, {"time", scene.time}, {"record_times", scene.record_times},
+            {"particles", scene.particles}, {"time", scene.time}, {"record_times", scene.record_times},
             {"seed", scene.seed}, {"threads", args.threads}, {"collisions", r.collisions()},
             {"escapes", r.escapes()}, {"wall_seconds", seconds},
             {"collisions_per_second", double(r.collisions()) / seconds}, {"per_time", per_time}});
-  if (const auto c = prediction_of(scene)) {
-    j["prediction"] = to_json(*c);
+  if (prediction) {
+    const auto& c = *prediction;
+    j["prediction"] = c;
     // Deviation of the measurement from g1 Δt and g2 Δt, in standard errors.
-    j["mean_dE_deviation_se"] = (j["mean_dE"].get<double>() - c->g1 * scene.time) / j["se_mean_dE"].get<double>();
-    j["var_dE_deviation_se"] = (j["var_dE"].get<double>() - c->g2 * scene.time) / j["se_var_dE"].get<double>();
+    j["mean_dE_deviation_se"] = (j["mean_dE"].get<double>() - c.g1 * scene.time) / j["se_mean_dE"].get<double>();
+    j["var_dE_deviation_se"] = (j["var_dE"].get<double>() - c.g2 * scene.time) / j["se_var_dE"].get<double>();
     // The exact Fokker–Planck moments at the end time (they include the growth of g1, g2 with E).
-    const auto fp = analysis::fokker_planck_moments(c->C * scene.time, scene.energy, c->dimension);
+    const auto fp = analysis::fokker_planck_exact_moments(c.C * scene.time, scene.energy, c.dimension);
     j["fp_mean_dE"] = fp.mean - scene.energy;
     j["fp_var_dE"] = fp.variance;
     j["mean_dE_fp_deviation_se"] = (j["mean_dE"].get<double>() - j["fp_mean_dE"].get<double>()) / j["se_mean_dE"].get<double>();
@@ -205,8 +180,7 @@ std::string fokker_planck_table(const Scene& scene, const analysis::Coefficients
   return csv;
 }
 
-void write_outputs(const Scene& scene, const EnsembleResult& r, const nlohmann::json& summary) {
-  OutputDir out(scene.output_dir);
+std::string energies_csv(const Scene& scene, const EnsembleResult& r) {
   const std::size_t n = scene.particles, m = scene.record_times.size();
   std::string csv = "particle";
   for (double t : scene.record_times) csv += fmt::format(",E(t={})", t);
@@ -216,79 +190,107 @@ void write_outputs(const Scene& scene, const EnsembleResult& r, const nlohmann::
     for (std::size_t k = 0; k < m; ++k) csv += fmt::format(",{:.17g}", r.energies[i * m + k]);
     csv += fmt::format(",{},{}\n", r.logs[i].collisions, int(r.logs[i].escaped));
   }
-  out.write_text("energies.csv", csv);
-  out.write_npy("energies.npy", r.energies, n, m);
-  out.write_json("summary.json", summary);
-  if (const auto c = prediction_of(scene)) out.write_text("fokker-planck.csv", fokker_planck_table(scene, *c, r));
-  out.commit();
+  return csv;
 }
 
-void run(RunArgs args) {
-  args.overrides.set = parse_overrides(args.set);
-  const Scene scene = dynamics::load_scene(args.scene, args.overrides);
-  if (args.threads <= 0) args.threads = omp_get_max_threads();
-  fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
-             scene.shape.region.name, scene.force.name(), scene.time);
-  const auto prediction = prediction_of(scene);
-  if (prediction) print_prediction(*prediction, scene.time);
-  double seconds = 0;
-  EnsembleResult result;
-  const dynamics::Vec2 force_accel = scene.force.amplitude / scene.mass;
-  try {
-    switch (scene.force.kind) {
-      case dynamics::Force::Kind::none: result = execute(scene, dynamics::FreeFlight{}, args, seconds); break;
-      case dynamics::Force::Kind::constant:
-        result = execute(scene, dynamics::ConstantForceFlight{force_accel}, args, seconds);
-        break;
-      case dynamics::Force::Kind::periodic:
-        result = execute(scene, dynamics::PeriodicDriveFlight{force_accel, scene.force.omega, scene.force.phase},
-                         args, seconds);
-        break;
-    }
-  } catch (const Interrupted&) {
-    fmt::print("stopped after {} new chunk(s); the same command resumes from {}.partial/\n", args.max_chunks,
-               scene.output_dir);
-    return;
+/// The flight model the scene needs, chosen at compile time for the whole ensemble.
+template <class Run>
+auto with_flight(const Scene& scene, Run&& run) {
+  const dynamics::Vec2 accel = scene.force.amplitude / scene.mass;
+  switch (scene.force.kind) {
+    case dynamics::Force::Kind::constant: return run(dynamics::ConstantForceFlight{accel});
+    case dynamics::Force::Kind::periodic:
+      return run(dynamics::PeriodicDriveFlight{accel, scene.force.omega, scene.force.phase});
+    case dynamics::Force::Kind::none: break;
   }
-  const auto summary = summarize(scene, result, seconds, args);
-  write_outputs(scene, result, summary);
-  fmt::print("measured  <dE> = {:.6g} ± {:.2g}   Var(dE) = {:.6g} ± {:.2g}\n", summary["mean_dE"].get<double>(),
-             summary["se_mean_dE"].get<double>(), summary["var_dE"].get<double>(), summary["se_var_dE"].get<double>());
-  if (prediction)
-    fmt::print("deviation from g1 dt: {:+.2f} SE, from g2 dt: {:+.2f} SE; from the exact Fokker-Planck moments "
-               "({:.6g}, {:.6g}): {:+.2f} SE, {:+.2f} SE\n",
-               summary["mean_dE_deviation_se"].get<double>(), summary["var_dE_deviation_se"].get<double>(),
-               summary["fp_mean_dE"].get<double>(), summary["fp_var_dE"].get<double>(),
-               summary["mean_dE_fp_deviation_se"].get<double>(), summary["var_dE_fp_deviation_se"].get<double>());
-  fmt::print("{} collisions in {:.3g} s ({:.3g} collisions/s), {} escapes; results in {}/\n",
-             result.collisions(), seconds, double(result.collisions()) / seconds, result.escapes(), scene.output_dir);
-  if (result.escapes() > 0) {
-    fmt::print(stderr, "billiard: error: {} particle(s) escaped the region (see 'escaped' in energies.csv)\n",
-               result.escapes());
-    throw CLI::RuntimeError(3);
-  }
+  return run(dynamics::FreeFlight{});
 }
 
 }  // namespace
 
+void add_run_options(CLI::App* cmd, RunArgs& args) {
+  cmd->add_option("scene", args.scene, "scene file (YAML)")->required();
+  cmd->add_option("--particles", args.overrides.particles, "number of particles");
+  cmd->add_option("--time", args.overrides.time, "end time of the run");
+  cmd->add_option("--omega", args.overrides.omega, "drive frequency (an expression: 320*pi)")->transform(expression_value);
+  cmd->add_option("--record", args.overrides.record, "record times t1,t2,... (0 and the end time are added)")
+      ->delimiter(',');
+  cmd->add_option("--seed", args.overrides.seed, "random seed");
+  cmd->add_option("--out", args.overrides.output_dir, "output directory");
+  cmd->add_option("--threads", args.threads, "threads (default: all cores)");
+  cmd->add_flag("--verify", args.verify, "also test the midpoint of every flight against the region");
+  cmd->add_flag("--quiet", args.quiet, "no progress bar");
+  cmd->add_flag("!--no-csv", args.csv, "write energies.npy only (energies.csv is ~0.4 kB per particle)");
+  cmd->add_option("--max-chunks", args.max_chunks,
+                  "run at most K new chunks of particles, then stop; the same command resumes");
+  add_set_option(cmd, args.set);
+}
+
+dynamics::Scene load_scene(const RunArgs& args) {
+  auto overrides = args.overrides;
+  overrides.set = parse_overrides(args.set);
+  return dynamics::load_scene(args.scene, overrides);
+}
+
+std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_in) {
+  RunArgs args = args_in;
+  if (args.threads <= 0) args.threads = omp_get_max_threads();
+  fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
+             scene.shape.region.name, scene.force.name(), scene.time);
+  RunOutcome run{scene, prediction_of(scene), {}, {}};
+  if (run.prediction) print_prediction(*run.prediction, scene.time);
+  double seconds = 0;
+  try {
+    run.result = with_flight(scene, [&](const auto& flight) { return execute(scene, flight, args, seconds); });
+  } catch (const Interrupted&) {
+    fmt::print("stopped after {} new chunk(s); the same command resumes from {}.partial/\n", args.max_chunks,
+               scene.output_dir);
+    return std::nullopt;
+  }
+  run.summary = summarize(scene, run.prediction, run.result, seconds, args);
+  return run;
+}
+
+void write_run_files(const OutputDir& out, const RunOutcome& run, const RunArgs& args) {
+  const auto& scene = run.scene;
+  if (args.csv) out.write_text("energies.csv", energies_csv(scene, run.result));
+  out.write_npy("energies.npy", run.result.energies, scene.particles, scene.record_times.size());
+  out.write_json("summary.json", run.summary);
+  if (run.prediction) out.write_text("fokker-planck.csv", fokker_planck_table(scene, *run.prediction, run.result));
+}
+
+void report(const RunOutcome& run) {
+  const auto& j = run.summary;
+  const auto get = [&](const char* key) { return j[key].get<double>(); };
+  fmt::print("measured  <dE> = {:.6g} ± {:.2g}   Var(dE) = {:.6g} ± {:.2g}\n", get("mean_dE"), get("se_mean_dE"),
+             get("var_dE"), get("se_var_dE"));
+  if (run.prediction)
+    fmt::print("deviation from g1 dt: {:+.2f} SE, from g2 dt: {:+.2f} SE; from the exact Fokker-Planck moments "
+               "({:.6g}, {:.6g}): {:+.2f} SE, {:+.2f} SE\n",
+               get("mean_dE_deviation_se"), get("var_dE_deviation_se"), get("fp_mean_dE"), get("fp_var_dE"),
+               get("mean_dE_fp_deviation_se"), get("var_dE_fp_deviation_se"));
+  const auto& r = run.result;
+  fmt::print("{} collisions in {:.3g} s ({:.3g} collisions/s), {} escapes; results in {}/\n", r.collisions(),
+             get("wall_seconds"), get("collisions_per_second"), r.escapes(), run.scene.output_dir);
+  if (r.escapes() > 0) {
+    fmt::print(stderr, "billiard: error: {} particle(s) escaped the region (see 'escaped' in energies.csv)\n",
+               r.escapes());
+    throw CLI::RuntimeError(3);
+  }
+}
+
 void add_run(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Run an ensemble of particles in a scene");
   auto args = std::make_shared<RunArgs>();
-  cmd->add_option("scene", args->scene, "scene file (YAML)")->required();
-  cmd->add_option("--particles", args->overrides.particles, "number of particles");
-  cmd->add_option("--time", args->overrides.time, "end time of the run");
-  cmd->add_option("--omega", args->overrides.omega, "drive frequency (periodic force)");
-  cmd->add_option("--record", args->overrides.record, "record times t1,t2,... (0 and the end time are added)")
-      ->delimiter(',');
-  cmd->add_option("--seed", args->overrides.seed, "random seed");
-  cmd->add_option("--out", args->overrides.output_dir, "output directory");
-  cmd->add_option("--threads", args->threads, "threads (default: all cores)");
-  cmd->add_flag("--verify", args->verify, "also test the midpoint of every flight against the region");
-  cmd->add_flag("--quiet", args->quiet, "no progress bar");
-  cmd->add_option("--max-chunks", args->max_chunks,
-                  "run at most K new chunks of particles, then stop; the same command resumes");
-  add_set_option(cmd, args->set);
-  cmd->callback([args] { run(*args); });
+  add_run_options(cmd, *args);
+  cmd->callback([args] {
+    const auto run = run_ensemble(load_scene(*args), *args);
+    if (!run) return;
+    OutputDir out(run->scene.output_dir);
+    write_run_files(out, *run, *args);
+    out.commit();
+    report(*run);
+  });
 }
 
 }  // namespace billiards::cli

@@ -16,6 +16,20 @@ std::uint64_t EnsembleResult::escapes() const {
   return n;
 }
 
+std::vector<double> EnsembleResult::energies_at(std::size_t k, std::size_t m) const {
+  std::vector<double> E;
+  for (std::size_t i = 0; i < logs.size(); ++i)
+    if (!logs[i].escaped) E.push_back(energies[i * m + k]);
+  return E;
+}
+
+std::vector<double> EnsembleResult::energy_changes(std::size_t k, std::size_t m) const {
+  std::vector<double> dE;
+  for (std::size_t i = 0; i < logs.size(); ++i)
+    if (!logs[i].escaped) dE.push_back(energies[i * m + k] - energies[i * m]);
+  return dE;
+}
+
 State sample_microcanonical(const Table& table, double speed, ParticleRng& rng) {
   State s;
   const Vec2 lo = table.lo(), size = table.hi() - table.lo();

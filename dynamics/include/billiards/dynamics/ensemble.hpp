@@ -107,6 +107,10 @@ struct EnsembleResult {
   std::vector<ParticleLog> logs;
   std::uint64_t collisions() const;
   std::uint64_t escapes() const;
+  /// E(t_k) − E(t_0) of every particle that did not escape (m record times per particle).
+  std::vector<double> energy_changes(std::size_t k, std::size_t m) const;
+  /// E(t_k) of every particle that did not escape.
+  std::vector<double> energies_at(std::size_t k, std::size_t m) const;
 };
 
 /// Particles a thread advances together.  Each collision depends on the previous one

@@ -1,0 +1,55 @@
+// The ensemble run behind `billiard run` and `billiard compare`: the scene, the particles and
+// the files they leave.
+#pragma once
+
+#include "options.hpp"
+#include "output.hpp"
+
+#include "billiards/analysis/coefficients.hpp"
+#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/scene.hpp"
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace billiards::cli {
+
+struct RunArgs {
+  std::string scene;
+  dynamics::SceneOverrides overrides;
+  std::vector<std::string> set;
+  int threads = 0;
+  bool verify = false;
+  bool quiet = false;
+  bool csv = true;             // energies.csv beside energies.npy
+  std::size_t max_chunks = 0;  // 0: no limit
+};
+
+/// The options of `billiard run`, shared by every command that runs an ensemble.
+void add_run_options(CLI::App* cmd, RunArgs& args);
+
+/// The scene with the command line's overrides applied.
+dynamics::Scene load_scene(const RunArgs& args);
+
+struct RunOutcome {
+  dynamics::Scene scene;
+  std::optional<analysis::Coefficients> prediction;
+  dynamics::EnsembleResult result;
+  nlohmann::json summary;  // summary.json
+};
+
+/// Prints the prediction, runs the ensemble (resuming from a checkpoint) and summarizes it;
+/// nothing if --max-chunks stopped it first.
+std::optional<RunOutcome> run_ensemble(const dynamics::Scene& scene, const RunArgs& args);
+
+/// Writes energies, summary.json and fokker-planck.csv into `out` (not yet committed).
+void write_run_files(const OutputDir& out, const RunOutcome& run, const RunArgs& args);
+
+/// The measurement beside the prediction on stdout; throws (exit status 3) if a particle escaped.
+void report(const RunOutcome& run);
+
+}  // namespace billiards::cli

@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""The figure of a `billiard compare` output directory.
+
+    plot_compare.py DIR        writes DIR/comparison.png
+
+Top row: the energy histogram at up to four recorded times (steps), the Fokker-Planck density
+eta(E, t) averaged over each bin (dots) and as a curve (from fokker-planck.csv), with the
+Kolmogorov-Smirnov distance (p-value) and the L1 distance beside the L1 that sampling noise
+alone would give.  Bottom row: <dE> and Var(dE) against t with their standard errors, the
+short-time prediction g1 t, g2 t, and the exact Fokker-Planck moments.
+"""
+import json
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+
+def main(run):
+    comparison = json.load(open(os.path.join(run, "comparison.json")))
+    times = comparison["times"]
+    hist = np.loadtxt(os.path.join(run, "comparison.csv"), delimiter=",", skiprows=1, ndmin=2)
+    fp = np.loadtxt(os.path.join(run, "fokker-planck.csv"), delimiter=",", skiprows=1, ndmin=2)
+    record_times = json.load(open(os.path.join(run, "summary.json")))["record_times"]
+
+    picks = sorted({int(round(i)) for i in np.linspace(0, len(times) - 1, min(4, len(times)))})
+    fig = plt.figure(figsize=(4.2 * max(len(picks), 2), 7.2))
+    grid = fig.add_gridspec(2, max(len(picks), 2))
+    for col, k in enumerate(picks):
+        ax = fig.add_subplot(grid[0, col])
+        f = times[k]
+        rows = hist[hist[:, 0] == f["t"]]
+        ax.stairs(rows[:, 3], np.append(rows[:, 1], rows[-1, 2]), color="#468", label="simulation")
+        centers = 0.5 * (rows[:, 1] + rows[:, 2])
+        ax.plot(centers, rows[:, 4], ".", color="k", ms=3, label="FP, bin average")
+        column = 1 + record_times.index(f["t"])
+        inside = (fp[:, 0] >= rows[0, 1]) & (fp[:, 0] <= rows[-1, 2])
+        ax.plot(fp[inside, 0], fp[inside, column], "k-", lw=0.8, label="Fokker-Planck")
+        ax.set_title(f"t = {f['t']:g}:  KS D = {f['ks_distance']:.3g} (p = {f['ks_p_value']:.2g})\n"
+                     f"L1 = {f['l1_distance']:.3g} (sampling noise alone: {f['l1_expected_from_noise']:.3g})",
+                     fontsize=9)
+        ax.set_xlabel("E")
+        if col == 0:
+            ax.set_ylabel("density")
+            ax.legend(fontsize=7, loc="center right")
+
+    t = np.array([0] + [f["t"] for f in times])
+    for col, (key, se, short, exact, label) in enumerate(
+            (("mean_dE", "se_mean_dE", "g1_t", "fp_mean_dE", "<dE>"),
+             ("var_dE", "se_var_dE", "g2_t", "fp_var_dE", "Var(dE)"))):
+        ax = fig.add_subplot(grid[1, col])
+        ax.errorbar(t[1:], [f[key] for f in times], yerr=[f[se] for f in times], fmt="o", ms=3, label="simulation")
+        ax.plot(t, [0] + [f[short] for f in times], "--", color="gray", label="short time: g t")
+        ax.plot(t, [0] + [f[exact] for f in times], "k-", lw=1, label="Fokker-Planck, exact")
+        ax.set_xlabel("t")
+        ax.set_ylabel(label)
+        ax.legend(fontsize=8)
+    pred = comparison["prediction"]
+    fig.suptitle(f"{comparison['scene']}: simulation against Fokker-Planck (C = {pred['C']:.5g}, "
+                 f"N = {times[0]['n']})", fontsize=11)
+    fig.tight_layout()
+    out = os.path.join(run, "comparison.png")
+    fig.savefig(out + ".tmp.png", dpi=110)
+    os.replace(out + ".tmp.png", out)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    main(sys.argv[1])
