@@ -37,7 +37,10 @@ double first_outward_crossing(SampleFn sample, EarliestFn earliest, SpanFn in_sp
       // At the wall to rounding: an outward crossing in the span is the collision.  A touch,
       // an inward crossing or a crossing outside the span is passed by the time f needs to
       // change by tol (a skipped crossing would be no deeper than rounding: a graze).
-      if (p.df > 0 && in_span(p.x)) return tau;
+      // One Newton step polishes the root from |f| ≤ tol (rounding of the walls, ~1e-13) to
+      // the rounding of f itself, so the collision time does not depend on where the scan
+      // happened to enter the tolerance band; the step stays inside that band.
+      if (p.df > 0 && in_span(p.x)) return std::max(0.0, tau - std::clamp(p.f / p.df, -tol / p.df, tol / p.df));
       s = 2 * tol / (std::abs(p.df) + std::sqrt(2 * p.M * tol));
     } else {
       // Earliest zero allowed by |f''| ≤ M: the positive root of |f| − σ f' s − M s²/2.
@@ -73,25 +76,48 @@ double reach_radius(double tau0, const Vec2& q0, const Vec2& u, double rho, bool
   return tau0 + c / (root - b);                                            // smaller root
 }
 
+/// Can a point within `pad` of the segment [p, q] lie in the wall's span?  The span is an
+/// intersection (or, for arcs longer than a half circle, a union) of half-planes, whose linear
+/// functions take their extremes over [p, q] at p or q; false only when certainly not.
+bool may_meet_span(const SegmentWall& w, const Vec2& p, const Vec2& q, double pad) {
+  const double sp = (p - w.a).dot(w.dir), sq = (q - w.a).dot(w.dir);
+  const double margin = (w.slack + pad) * w.dir.norm() + 8 * eps * (1 + std::abs(sp) + std::abs(sq));
+  return std::max(sp, sq) >= -margin && std::min(sp, sq) <= 1 + margin;
+}
+
+bool may_meet_span(const ArcWall& w, const Vec2& p, const Vec2& q, double pad) {
+  if (w.full) return true;
+  const Vec2 a = p - w.center, b = q - w.center;
+  const double margin = w.radius * (w.slack + pad) + 16 * eps * w.radius * (a.norm() + b.norm());
+  if (w.ccw_extent <= geometry::pi)
+    return std::max(cross(w.from, a), cross(w.from, b)) >= -margin && std::max(cross(a, w.to), cross(b, w.to)) >= -margin;
+  return !(std::min(cross(w.to, a), cross(w.to, b)) > margin && std::min(cross(a, w.from), cross(b, w.from)) > margin);
+}
+
 }  // namespace
 
 // ---- Periodic drive ---------------------------------------------------------------------
 
+void DrivenState::set_phase(long double theta) {
+  phase = reduce_phase(theta);
+  sin_phase = std::sin(double(phase));
+  cos_phase = std::cos(double(phase));
+}
+
 DrivenState PeriodicDriveFlight::start(const dynamics::State& s) const {
   DrivenState d;
   static_cast<dynamics::State&>(d) = s;
-  d.phase = reduce_phase(static_cast<long double>(omega) * s.t + phase0);
+  d.set_phase(static_cast<long double>(omega) * s.t + phase0);
   return d;
 }
 
 DrivenState PeriodicDriveFlight::advance(const State& s, double t) const {
   const double tau = t - s.t;
   State r = s;
-  r.phase = reduce_phase(s.phase + static_cast<long double>(omega) * tau);
-  const double th0 = double(s.phase), th = double(r.phase);
+  r.set_phase(s.phase + static_cast<long double>(omega) * tau);
   const Vec2 amp_v = accel / omega, amp_x = accel / (omega * omega);
-  r.v = s.v + amp_v * (std::sin(th) - std::sin(th0));
-  r.x = s.x + (s.v - amp_v * std::sin(th0)) * tau - amp_x * (std::cos(th) - std::cos(th0));
+  r.v = s.v + amp_v * (r.sin_phase - s.sin_phase);
+  r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * (r.cos_phase - s.cos_phase);
   r.t = t;
   return r;
 }
@@ -107,12 +133,12 @@ struct Quiver {
   double speed_bound;  // bound on |v| at any time of this flight
 
   Quiver(const PeriodicDriveFlight& f, const DrivenState& st) : flight(f), s(st) {
-    const double th0 = double(st.phase);
     const Vec2 amp_x = f.accel / (f.omega * f.omega);
-    u = st.v - f.accel / f.omega * std::sin(th0);
-    g0 = st.x + amp_x * std::cos(th0);
+    u = st.v - f.accel / f.omega * st.sin_phase;
+    g0 = st.x + amp_x * st.cos_phase;
     speed_bound = u.norm() + f.accel.norm() / f.omega;
   }
+  Vec2 guide(double tau) const { return g0 + u * tau; }
   /// Position and velocity τ after the start (the closed form of advance()).  Within one
   /// flight ωτ stays moderate, so a double phase is accurate to ~1e-12 rad, which moves the
   /// particle by 1e-12 |F|/(mω²): no extended-precision reduction is needed here.
@@ -136,10 +162,16 @@ double PeriodicDriveFlight::exit_time(const State& s, const SegmentWall& w, doub
     return Sample{w.normal.dot(x - w.a), w.normal.dot(v), n_a, never, x};
   };
   // f lies within B of its guiding part g_off + nu τ, which must first come within B (and
-  // rounding) of zero.
+  // rounding) of zero.  While it is that close (the window, widened to twice the margin so
+  // that the scan leaves it for good), a crossing counts only if the particle, within δ of the
+  // guiding point, can be in the segment's span; if it cannot, the whole window is passed.
+  const double delta = accel.norm() / (omega * omega);
   auto earliest = [&](double tau, double f) {
     const double margin = B + tolerance(tau), guide = g_off + nu * tau;
-    return f < 0 ? reach_linear(tau, guide, nu, -margin) : reach_linear(tau, -guide, -nu, -margin);
+    const double start = f < 0 ? reach_linear(tau, guide, nu, -margin) : reach_linear(tau, -guide, -nu, -margin);
+    if (start > tau || nu == 0) return start;
+    const double end = std::min(tau + ((nu > 0 ? 2 : -2) * margin - guide) / nu, t_end - s.t);
+    return end > tau && !may_meet_span(w, q.guide(tau), q.guide(end), delta) ? end : tau;
   };
   auto in_span = [&](const Vec2& x) { return w.within_span(x); };
   const double tau = first_outward_crossing(sample, earliest, in_span, tolerance, t_end - s.t);
@@ -167,8 +199,13 @@ double PeriodicDriveFlight::exit_time(const State& s, const ArcWall& w, double t
     const Vec2 g = q.g0 + q.u * tau - w.center;
     const double margin = delta + tolerance(tau);
     const bool inside = (f < 0) == w.focusing;  // inside the circle, to rounding
-    return inside ? reach_radius(tau, g, q.u, std::max(0.0, w.radius - margin), true)
-                  : reach_radius(tau, g, q.u, w.radius + margin, false);
+    const double start = inside ? reach_radius(tau, g, q.u, std::max(0.0, w.radius - margin), true)
+                                : reach_radius(tau, g, q.u, w.radius + margin, false);
+    if (start > tau) return start;
+    // In the window (see the segment's case), until the guiding point is twice the margin off.
+    const double end = std::min({reach_radius(tau, g, q.u, w.radius + 2 * margin, true),
+                                 reach_radius(tau, g, q.u, std::max(0.0, w.radius - 2 * margin), false), t_end - s.t});
+    return end > tau && !may_meet_span(w, q.guide(tau), q.guide(end), delta) ? end : tau;
   };
   auto in_span = [&](const Vec2& x) { return w.within_span(x); };
   const double tau = first_outward_crossing(sample, earliest, in_span, tolerance, t_end - s.t);

@@ -20,6 +20,10 @@ namespace billiards::dynamics {
 /// extended precision.  A plain double ω t at ω = 2560π, t = 1e4 would keep only 8 digits.
 struct DrivenState : State {
   long double phase = 0;
+  /// sin and cos of `phase`, from which every exit-time search starts: computed once per
+  /// flight instead of once per wall.  Set them with the phase (set_phase).
+  double sin_phase = 0, cos_phase = 1;
+  void set_phase(long double theta);
 };
 
 /// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0).
