@@ -3,6 +3,7 @@
 // whole distribution, each beside the value sampling noise alone would give.
 #include "commands.hpp"
 #include "python.hpp"
+#include "ranks.hpp"
 #include "run.hpp"
 
 #include "billiards/analysis/fokker_planck.hpp"
@@ -102,7 +103,7 @@ void compare(const CompareArgs& args) {
     throw InputError(scene.file, 0,
                      "compare needs a scene with a prediction: a periodic force and a microcanonical initial energy");
   const auto run = run_ensemble(scene, args);
-  if (!run) return;
+  if (!run || !ranks().root()) return;
   std::vector<Fit> fits;
   for (std::size_t k = 1; k < scene.record_times.size(); ++k) fits.push_back(fit_at(*run, k, args.bins));
   nlohmann::json times = nlohmann::json::array();

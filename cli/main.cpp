@@ -1,10 +1,13 @@
 // billiard: the command-line program.  Each subcommand lives in its own file.
 #include "commands.hpp"
+#include "ranks.hpp"
 
 #include "billiards/geometry/input_error.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+
+#include <cstdio>
 
 namespace billiards::cli {
 namespace {
@@ -26,15 +29,19 @@ int main(int argc, char** argv) {
   billiards::cli::add_plot(app);
   billiards::cli::add_fp(app);
   billiards::cli::add_compare(app);
+  bool speaks = true;  // in an MPI job only the first rank prints; all compute
   try {
+    const billiards::cli::Ranks ranks(argc, argv);
+    speaks = ranks.root();
+    if (!speaks && !std::freopen("/dev/null", "w", stdout)) return 1;
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+  } catch (const CLI::Error& e) {
+    return speaks ? app.exit(e) : e.get_exit_code();
   } catch (const billiards::InputError& e) {
-    fmt::print(stderr, "billiard: error: {}\n", e.what());
+    if (speaks) fmt::print(stderr, "billiard: error: {}\n", e.what());
     return 2;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "billiard: error: {}\n", e.what());
+    if (speaks) fmt::print(stderr, "billiard: error: {}\n", e.what());
     return 1;
   }
   return 0;

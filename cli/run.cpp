@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
+#include "ranks.hpp"
 
 #include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/analysis/statistics.hpp"
@@ -36,13 +37,16 @@ class Checkpoint {
  public:
   Checkpoint(const fs::path& out, std::string fingerprint)
       : dir_(fs::path(out.string() + ".partial")), fingerprint_(std::move(fingerprint)) {
-    std::ifstream in(dir_ / "fingerprint.json");
-    std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (old != fingerprint_) {  // another scene or other parameters: start afresh
-      fs::remove_all(dir_);
-      fs::create_directories(dir_);
-      std::ofstream(dir_ / "fingerprint.json") << fingerprint_;
+    if (ranks().root()) {
+      std::ifstream in(dir_ / "fingerprint.json");
+      std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (old != fingerprint_) {  // another scene or other parameters: start afresh
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        std::ofstream(dir_ / "fingerprint.json") << fingerprint_;
+      }
     }
+    ranks().barrier();  // the other ranks find the directory ready
   }
 
   bool load(std::size_t first, std::size_t last, std::size_t m, EnsembleResult& r) const {
@@ -103,23 +107,33 @@ EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& 
   result.energies.resize(n * m);
   result.logs.resize(n);
   const Checkpoint checkpoint(scene.output_dir, fingerprint_of(scene).dump());
-  Progress progress("run", n, !args.quiet);
+  // Chunk c belongs to rank c mod K; the others leave its entries zero for the combination.
+  const Ranks& procs = ranks();
+  Progress progress("run", n, !args.quiet && procs.root());
   const std::size_t chunk = std::max<std::size_t>(1024, n / 64);
   const auto start = std::chrono::steady_clock::now();
   std::size_t new_chunks = 0;
-  for (std::size_t first = 0; first < n; first += chunk) {
+  bool interrupted = false;
+  for (std::size_t first = 0; first < n && !interrupted; first += chunk) {
+    if ((first / chunk) % std::size_t(procs.size()) != std::size_t(procs.rank())) continue;
     const std::size_t last = std::min(n, first + chunk);
     if (!checkpoint.load(first, last, m, result)) {
-      if (args.max_chunks && new_chunks++ == args.max_chunks) throw Interrupted{};
+      if (args.max_chunks && new_chunks++ == args.max_chunks) {
+        interrupted = true;
+        break;
+      }
       dynamics::run_particles(table, flight, initial, opt, first, last, args.threads, result,
                               [&](std::size_t done) { progress.update(first + done); });
       checkpoint.save(first, last, m, result);
     }
     progress.update(last);
   }
+  if (procs.any(interrupted)) throw Interrupted{};
+  procs.combine(result.energies.data(), result.energies.size() * sizeof(double));
+  procs.combine(result.logs.data(), result.logs.size() * sizeof(dynamics::ParticleLog));
   progress.finish();
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  checkpoint.remove();
+  if (procs.root()) checkpoint.remove();
   return result;
 }
 
@@ -139,7 +153,7 @@ nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coeff
             {"force", scene.force.name()}, {"F", {scene.force.amplitude.x(), scene.force.amplitude.y()}},
             {"omega", scene.force.omega}, {"mass", scene.mass}, {"E0", scene.energy},
             {"particles", scene.particles}, {"time", scene.time}, {"record_times", scene.record_times},
-            {"seed", scene.seed}, {"threads", args.threads}, {"collisions", r.collisions()},
+            {"seed", scene.seed}, {"threads", args.threads}, {"ranks", ranks().size()}, {"collisions", r.collisions()},
             {"escapes", r.escapes()}, {"wall_seconds", seconds},
             {"collisions_per_second", double(r.collisions()) / seconds}, {"per_time", per_time}});
   if (prediction) {
@@ -283,9 +297,13 @@ void add_run(CLI::App& app) {
   auto* cmd = app.add_subcommand("run", "Run an ensemble of particles in a scene");
   auto args = std::make_shared<RunArgs>();
   add_run_options(cmd, *args);
+  cmd->add_option("--sweep", args->sweep,
+                  "NAME=VALUES: a run per value of omega or of a parameter; VALUES is a,b,c or FROM..TO:xFACTOR "
+                  "or FROM..TO:+STEP (expressions), outputs in OUT/NAME=VALUE/ and OUT/sweep.csv");
   cmd->callback([args] {
+    if (!args->sweep.empty()) return run_sweep(*args);
     const auto run = run_ensemble(load_scene(*args), *args);
-    if (!run) return;
+    if (!run || !ranks().root()) return;
     OutputDir out(run->scene.output_dir);
     write_run_files(out, *run, *args);
     out.commit();

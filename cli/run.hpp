@@ -27,6 +27,7 @@ struct RunArgs {
   bool quiet = false;
   bool csv = true;             // energies.csv beside energies.npy
   std::size_t max_chunks = 0;  // 0: no limit
+  std::string sweep;           // NAME=VALUES: one run per value (sweep.cpp)
 };
 
 /// The options of `billiard run`, shared by every command that runs an ensemble.
@@ -51,5 +52,8 @@ void write_run_files(const OutputDir& out, const RunOutcome& run, const RunArgs&
 
 /// The measurement beside the prediction on stdout; throws (exit status 3) if a particle escaped.
 void report(const RunOutcome& run);
+
+/// `run --sweep NAME=VALUES`: a run per value into OUT/NAME=VALUE/, and OUT/sweep.csv, sweep.json.
+void run_sweep(const RunArgs& args);
 
 }  // namespace billiards::cli

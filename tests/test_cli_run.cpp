@@ -2,6 +2,10 @@
 #include "cli_helpers.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
 
 namespace fs = std::filesystem;
 
@@ -102,4 +106,48 @@ TEST_CASE("particles outside the region in an initial-condition file are rejecte
   CHECK(r.status != 0);
   CHECK_THAT(r.output, Catch::Contains("init.csv:3: particle is outside the region"));
   CHECK_FALSE(fs::exists(dir / "out"));
+}
+
+TEST_CASE("--sweep runs one ensemble per value and tabulates them; Var(dE) grows as F^2") {
+  const auto dir = scratch("sweep");
+  const auto r = billiard("run scenes/clover-driven.yaml --omega 320*pi --particles 4000 --time 20 --quiet --no-csv "
+                          "--sweep F=5,10 --out " + dir.string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const auto sweep = nlohmann::json::parse(read_file(dir / "sweep.json"));
+  REQUIRE(sweep["points"].size() == 2);
+  const auto& low = sweep["points"][0]["summary"];
+  const auto& high = sweep["points"][1]["summary"];
+  CHECK(fs::exists(dir / "F=5" / "energies.npy"));
+  CHECK(fs::exists(dir / "F=10" / "summary.json"));
+  CHECK(low["shape_parameters"].is_object());
+  // g2 ∝ F² (C = 0.5419 F²/ω²): doubling F quadruples Var(dE), within the sampling error.
+  const double ratio = high["var_dE"].get<double>() / low["var_dE"].get<double>();
+  const double se = ratio * std::hypot(high["se_var_dE"].get<double>() / high["var_dE"].get<double>(),
+                                       low["se_var_dE"].get<double>() / low["var_dE"].get<double>());
+  CHECK(std::abs(ratio - 4) < 4 * se);
+  CHECK(high["prediction"]["C"].get<double>() == Approx(4 * low["prediction"]["C"].get<double>()));
+  // The table has a header and one row per value.
+  const auto csv = read_file(dir / "sweep.csv");
+  CHECK(csv.rfind("F,particles,mean_dE", 0) == 0);
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 3);
+}
+
+TEST_CASE("geometric sweeps reach their end despite rounding; bad sweeps are errors") {
+  const auto dir = scratch("sweep-range");
+  const auto r = billiard("run scenes/clover-free.yaml --particles 1000 --time 2 --quiet --no-csv "
+                          "--sweep omega=10*pi..40*pi:x2 --out " + dir.string());
+  CHECK(r.status != 0);  // the free scene has no drive to sweep
+  CHECK_THAT(r.output, Catch::Contains("--omega needs a periodic force"));
+  const auto ok = billiard("run scenes/clover-driven.yaml --particles 1000 --time 2 --quiet --no-csv "
+                           "--sweep omega=10*pi..40*pi:x2 --out " + dir.string());
+  REQUIRE(ok.status == 0);
+  CHECK(nlohmann::json::parse(read_file(dir / "sweep.json"))["points"].size() == 3);
+  for (const std::string bad : {"omega", "omega=1..2", "omega=2..1:x0.5", "omega=1..2:+0", "omega=1,2*"}) {
+    const auto e = billiard("run scenes/clover-driven.yaml --particles 10 --quiet --sweep " + bad + " --out " +
+                            (dir / "bad").string());
+    INFO(bad << ": " << e.output);
+    CHECK(e.status == 2);
+    CHECK_THAT(e.output, Catch::Contains("--sweep"));
+  }
 }
