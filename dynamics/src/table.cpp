@@ -1,5 +1,7 @@
 #include "billiards/dynamics/table.hpp"
 
+#include "billiards/dynamics/precision.hpp"
+
 #include "billiards/geometry/measures.hpp"
 
 #include <algorithm>
@@ -11,23 +13,26 @@ namespace {
 
 /// Signed number of times the horizontal ray from p to +∞ crosses the segment upward
 /// (half-open rule on y, so a vertex is counted once).
-int crossings(const SegmentWall& w, const Vec2& p) {
+template <class Real>
+int crossings(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p) {
   const bool up = w.a.y() <= p.y() && w.b.y() > p.y();
   const bool down = w.b.y() <= p.y() && w.a.y() > p.y();
   if (!up && !down) return 0;
-  const double side = geometry::cross(Vec2(w.b - w.a), Vec2(p - w.a));  // > 0: p left of a→b
+  const Real side = geometry::cross(Vec2T<Real>(w.b - w.a), Vec2T<Real>(p - w.a));  // > 0: p left of a→b
   return up ? (side > 0 ? 1 : 0) : (side < 0 ? -1 : 0);
 }
 
 /// Same for an arc: the ray meets its circle at most twice.
-int crossings(const ArcWall& w, const Vec2& p) {
-  const double dy = p.y() - w.center.y();
-  const double h2 = w.radius2 - dy * dy;
+template <class Real>
+int crossings(const BasicArcWall<Real>& w, const Vec2T<Real>& p) {
+  using std::sqrt;
+  const Real dy = p.y() - w.center.y();
+  const Real h2 = w.radius2 - dy * dy;
   if (h2 <= 0) return 0;
-  const double h = std::sqrt(h2);
+  const Real h = sqrt(h2);
   int n = 0;
-  for (const double sx : {-1.0, 1.0}) {
-    const Vec2 q(w.center.x() + sx * h, p.y());
+  for (const int sx : {-1, 1}) {
+    const Vec2T<Real> q(w.center.x() + sx * h, p.y());
     if (q.x() <= p.x() || !w.within_span(q)) continue;
     // Travelling counter-clockwise the circle goes up on its right half (sx = +1).
     const int ccw_up = sx > 0 ? 1 : -1;
@@ -37,20 +42,24 @@ int crossings(const ArcWall& w, const Vec2& p) {
 }
 
 /// Distance from p to the wall (exact for segments; arcs: to the circle, within span).
-double distance(const SegmentWall& w, const Vec2& p) {
-  const double s = std::clamp((p - w.a).dot(w.dir), 0.0, 1.0);
+template <class Real>
+Real distance(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p) {
+  const Real s = std::clamp(Real((p - w.a).dot(w.dir)), Real(0), Real(1));
   return (p - (w.a + s * (w.b - w.a))).norm();
 }
-double distance(const ArcWall& w, const Vec2& p) {
-  const Vec2 u = p - w.center;
-  const Vec2 on = w.center + w.radius * u / u.norm();
-  if (w.within_span(on)) return std::abs(u.norm() - w.radius);
-  return std::min((p - (w.center + w.from)).norm(), (p - (w.center + w.to)).norm());
+template <class Real>
+Real distance(const BasicArcWall<Real>& w, const Vec2T<Real>& p) {
+  using std::abs;
+  const Vec2T<Real> u = p - w.center;
+  const Vec2T<Real> on = w.center + w.radius * u / u.norm();
+  if (w.within_span(on)) return abs(u.norm() - w.radius);
+  return std::min(Real((p - (w.center + w.from)).norm()), Real((p - (w.center + w.to)).norm()));
 }
 
 }  // namespace
 
-Table::Table(const geometry::Region2& region) {
+template <class Real>
+BasicTable<Real>::BasicTable(const geometry::Region2& region) {
   // Segments first, then arcs, each keeping its source line.
   std::vector<std::pair<const geometry::Piece*, geometry::SourceRef>> arcs;
   for (const geometry::Loop* loop : region.loops()) {
@@ -77,11 +86,13 @@ Table::Table(const geometry::Region2& region) {
   if (wall_count() > grid_threshold) build_grid();
 }
 
-Vec2 Table::normal_at(int wall, const Vec2& p) const {
+template <class Real>
+auto BasicTable<Real>::normal_at(int wall, const V& p) const -> V {
   return is_arc(wall) ? arcs_[wall - segments_.size()].normal_at(p) : segments_[wall].normal;
 }
 
-bool Table::contains(const Vec2& p) const {
+template <class Real>
+bool BasicTable<Real>::contains(const V& p) const {
   int winding = 0;
   for (const auto& w : segments_) {
     if (distance(w, p) <= tolerance_) return true;
@@ -94,7 +105,8 @@ bool Table::contains(const Vec2& p) const {
   return winding != 0;
 }
 
-void Table::build_grid() {
+template <class Real>
+void BasicTable<Real>::build_grid() {
   // About two walls per cell along the boundary: n walls spread over ~√n cells per side.
   const Vec2 size = hi_ - lo_;
   const double cells = 2.0 * double(wall_count());
@@ -119,5 +131,9 @@ void Table::build_grid() {
     grid_.start.push_back(int(grid_.walls.size()));
   }
 }
+
+template class BasicTable<double>;
+template class BasicTable<long double>;
+template class BasicTable<Reference>;
 
 }  // namespace billiards::dynamics

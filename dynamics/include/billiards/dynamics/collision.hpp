@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <type_traits>
+#include <vector>
 
 namespace billiards::dynamics {
 
@@ -14,11 +15,11 @@ namespace detail {
 
 /// Tries one wall; keeps it if it is hit before the best so far.
 template <class Flight>
-inline void try_wall(const Table& table, const Flight& flight, const typename Flight::State& s,
-                     int wall, Hit& best) {
+inline void try_wall(const BasicTable<typename Flight::Scalar>& table, const Flight& flight,
+                     const typename Flight::State& s, int wall, BasicHit<typename Flight::Scalar>& best) {
   const std::size_t ns = table.segments().size();
-  const double t = std::size_t(wall) < ns ? flight.exit_time(s, table.segments()[wall], best.t)
-                                          : flight.exit_time(s, table.arcs()[wall - ns], best.t);
+  const auto t = std::size_t(wall) < ns ? flight.exit_time(s, table.segments()[wall], best.t)
+                                        : flight.exit_time(s, table.arcs()[wall - ns], best.t);
   if (t < best.t) {
     best.t = t;
     best.wall = wall;
@@ -35,9 +36,10 @@ Hit grid_collision(const Table& table, const FreeFlight& flight, const State& s,
 /// Hit::found() is false when no wall is met: for a particle inside a bounded region and
 /// t_end = never, that means it has escaped.
 template <class Flight>
-Hit collision(const Table& table, const Flight& flight, const typename Flight::State& s,
-              double t_end = never) {
-  Hit best;
+BasicHit<typename Flight::Scalar> collision(const BasicTable<typename Flight::Scalar>& table, const Flight& flight,
+                                            const typename Flight::State& s,
+                                            const typename Flight::Scalar& t_end = never) {
+  BasicHit<typename Flight::Scalar> best;
   if constexpr (std::is_same_v<Flight, FreeFlight>) {
     if (table.grid()) best = detail::grid_collision(table, flight, s, t_end);
   }
@@ -52,19 +54,44 @@ Hit collision(const Table& table, const Flight& flight, const typename Flight::S
 }
 
 /// Specular reflection v' = v − 2(v·n)n.
-inline Vec2 reflect(const Vec2& v, const Vec2& n) { return v - 2 * v.dot(n) * n; }
+template <class Real>
+inline Vec2T<Real> reflect(const Vec2T<Real>& v, const Vec2T<Real>& n) {
+  return v - 2 * v.dot(n) * n;
+}
 
 /// Rescales v to the speed² `v2`.  Flights that conserve energy restore it after every bounce
 /// against the value at the start, never against the previous bounce, so rounding cannot
 /// accumulate into a drift over 10⁹ bounces.
-inline void restore_speed(Vec2& v, double v2) { v *= std::sqrt(v2 / v.squaredNorm()); }
+template <class Real>
+inline void restore_speed(Vec2T<Real>& v, const Real& v2) {
+  using std::sqrt;
+  v *= Real(sqrt(v2 / v.squaredNorm()));
+}
 
 /// Moves the particle to the collision and reflects it there.
 template <class Flight>
-void bounce(const Flight& flight, typename Flight::State& s, const Hit& hit) {
+void bounce(const Flight& flight, typename Flight::State& s, const BasicHit<typename Flight::Scalar>& hit) {
   s = flight.advance(s, hit.t);
   s.x = hit.point;
   s.v = reflect(s.v, hit.normal);
+}
+
+/// The next `collisions` hits of the particle from `s`, bouncing at each (fewer if it meets
+/// no wall: an escape); energy-conserving flights restore the speed after every bounce.
+template <class Flight>
+std::vector<BasicHit<typename Flight::Scalar>> evolve(const BasicTable<typename Flight::Scalar>& table,
+                                                      const Flight& flight, typename Flight::State s,
+                                                      std::size_t collisions) {
+  std::vector<BasicHit<typename Flight::Scalar>> hits;
+  const auto v2 = s.v.squaredNorm();
+  for (std::size_t k = 0; k < collisions; ++k) {
+    const auto hit = collision(table, flight, s);
+    if (!hit.found()) break;
+    bounce(flight, s, hit);
+    if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
+    hits.push_back(hit);
+  }
+  return hits;
 }
 
 }  // namespace billiards::dynamics

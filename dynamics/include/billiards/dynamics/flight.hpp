@@ -1,11 +1,12 @@
 // Flight models: how a particle moves between collisions.
 //
 // A flight model M is a small value type with
-//   using State = ...;                      // derives from dynamics::State
+//   using Scalar = ...;                     // double, or long double / MPFR for references
+//   using State = ...;                      // derives from dynamics::BasicState<Scalar>
 //   State start(const dynamics::State& s) const;              // a particle's initial state
-//   State advance(const State& s, double t) const;            // state at time t ≥ s.t
-//   double exit_time(const State& s, const SegmentWall& w, double t_end) const;
-//   double exit_time(const State& s, const ArcWall& w, double t_end) const;
+//   State advance(const State& s, Scalar t) const;            // state at time t ≥ s.t
+//   Scalar exit_time(const State& s, const BasicSegmentWall<Scalar>& w, Scalar t_end) const;
+//   Scalar exit_time(const State& s, const BasicArcWall<Scalar>& w, Scalar t_end) const;
 //   static constexpr bool conserves_energy;
 // exit_time returns the first time t in [s.t, t_end] at which the trajectory starting from s
 // crosses the wall OUTWARD (from the region's side to the wall's side) at a point within the
@@ -27,20 +28,24 @@ namespace billiards::dynamics {
 
 inline constexpr double never = std::numeric_limits<double>::infinity();
 
-/// Straight flight at constant velocity (no force).
-struct FreeFlight {
-  using State = dynamics::State;
+/// Straight flight at constant velocity (no force), in any scalar type (free_flight.cpp
+/// instantiates double, long double and precision.hpp's Reference).
+template <class Real>
+struct BasicFreeFlight {
+  using Scalar = Real;
+  using State = BasicState<Real>;
   static constexpr bool conserves_energy = true;
 
   State start(const State& s) const { return s; }
-  State advance(const State& s, double t) const {
+  State advance(const State& s, const Real& t) const {
     State r = s;
     r.x = s.x + s.v * (t - s.t);
     r.t = t;
     return r;
   }
-  double exit_time(const State& s, const SegmentWall& w, double t_end) const;
-  double exit_time(const State& s, const ArcWall& w, double t_end) const;
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
 };
+using FreeFlight = BasicFreeFlight<double>;
 
 }  // namespace billiards::dynamics

@@ -28,6 +28,7 @@ struct DrivenState : State {
 
 /// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0).
 struct PeriodicDriveFlight {
+  using Scalar = double;
   using State = DrivenState;
   static constexpr bool conserves_energy = false;
 
@@ -45,6 +46,7 @@ struct PeriodicDriveFlight {
 
 /// A static uniform force F on a particle of mass m: parabolic flights.
 struct ConstantForceFlight {
+  using Scalar = double;
   using State = dynamics::State;
   static constexpr bool conserves_energy = false;  // kinetic energy changes between collisions
 

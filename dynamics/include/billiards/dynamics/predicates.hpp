@@ -13,9 +13,10 @@ namespace billiards::dynamics {
 using geometry::Vec2;
 
 /// b² − a c of the ray–circle quadratic in its cancellation-free form r²|v|² − (f × v)²,
-/// f = x − centre (double, not exact).
-inline double circle_discriminant(const Vec2& f, const Vec2& v, double r2) {
-  const double fxv = f.x() * v.y() - f.y() * v.x();
+/// f = x − centre (in the scalar type, not exact).
+template <class Real>
+inline Real circle_discriminant(const geometry::Vec2T<Real>& f, const geometry::Vec2T<Real>& v, const Real& r2) {
+  const Real fxv = f.x() * v.y() - f.y() * v.x();
   return r2 * v.squaredNorm() - fxv * fxv;
 }
 

@@ -10,7 +10,9 @@
 
 namespace billiards::dynamics {
 
-class Table;
+template <class Real>
+class BasicTable;
+using Table = BasicTable<double>;
 
 inline std::uint64_t splitmix64(std::uint64_t x) {
   x += 0x9e3779b97f4a7c15ULL;

@@ -1,4 +1,5 @@
-// A particle's state and the record of one collision.
+// A particle's state and the record of one collision, in any scalar type: double for
+// ensembles, long double or MPFR (precision.hpp) for reference trajectories.
 #pragma once
 
 #include "billiards/geometry/pieces.hpp"
@@ -6,22 +7,27 @@
 namespace billiards::dynamics {
 
 using geometry::Vec2;
+using geometry::Vec2T;
 
 /// Position, velocity and time of one particle.  Flights that need more (the drive's phase)
 /// carry it in their own state type derived from this one.
-struct State {
-  Vec2 x = Vec2::Zero();
-  Vec2 v = Vec2::Zero();
-  double t = 0;
+template <class Real>
+struct BasicState {
+  Vec2T<Real> x = Vec2T<Real>::Zero();
+  Vec2T<Real> v = Vec2T<Real>::Zero();
+  Real t = 0;
 };
+using State = BasicState<double>;
 
 /// Where and when a flight leaves the region through a wall.
-struct Hit {
-  double t = 0;                     // absolute time of the collision
-  int wall = -1;                    // index into Table::walls()
-  Vec2 point = Vec2::Zero();        // collision point (on the wall, to rounding)
-  Vec2 normal = Vec2::Zero();       // outward unit normal of the region at `point`
+template <class Real>
+struct BasicHit {
+  Real t = 0;                                   // absolute time of the collision
+  int wall = -1;                                // index into the table's walls
+  Vec2T<Real> point = Vec2T<Real>::Zero();      // collision point (on the wall, to rounding)
+  Vec2T<Real> normal = Vec2T<Real>::Zero();     // outward unit normal of the region at `point`
   bool found() const { return wall >= 0; }
 };
+using Hit = BasicHit<double>;
 
 }  // namespace billiards::dynamics

@@ -1,5 +1,7 @@
 // The billiard table as the dynamics sees it: the region's walls prepared for fast queries,
 // a uniform grid over them when there are many, and an independent point-in-region test.
+// The walls' scalar type is a parameter (table.cpp instantiates double, long double and
+// precision.hpp's Reference); the grid and the bounding box are in double.
 #pragma once
 
 #include "billiards/dynamics/walls.hpp"
@@ -9,25 +11,27 @@
 
 namespace billiards::dynamics {
 
-class Table {
+template <class Real>
+class BasicTable {
  public:
+  using V = Vec2T<Real>;
   /// Tables with more walls than this get a uniform grid for straight flights.
   static constexpr std::size_t grid_threshold = 24;
 
-  explicit Table(const geometry::Region2& region);
+  explicit BasicTable(const geometry::Region2& region);
 
-  const std::vector<SegmentWall>& segments() const { return segments_; }
-  const std::vector<ArcWall>& arcs() const { return arcs_; }
+  const std::vector<BasicSegmentWall<Real>>& segments() const { return segments_; }
+  const std::vector<BasicArcWall<Real>>& arcs() const { return arcs_; }
   /// Walls are numbered segments first, then arcs.
   std::size_t wall_count() const { return segments_.size() + arcs_.size(); }
   bool is_arc(int wall) const { return wall >= int(segments_.size()); }
-  Vec2 normal_at(int wall, const Vec2& p) const;
+  V normal_at(int wall, const V& p) const;
   /// The source line of a wall in the shape file (for reports).
   const geometry::SourceRef& source_of(int wall) const { return sources_[wall]; }
 
   /// Is p inside the region?  Crossing-number test, independent of the collision kernels;
   /// points within `tolerance` of a wall count as inside.
-  bool contains(const Vec2& p) const;
+  bool contains(const V& p) const;
   double tolerance() const { return tolerance_; }
   Vec2 lo() const { return lo_; }
   Vec2 hi() const { return hi_; }
@@ -43,13 +47,14 @@ class Table {
 
  private:
   void build_grid();
-  std::vector<SegmentWall> segments_;
-  std::vector<ArcWall> arcs_;
+  std::vector<BasicSegmentWall<Real>> segments_;
+  std::vector<BasicArcWall<Real>> arcs_;
   std::vector<geometry::SourceRef> sources_;
   std::vector<std::pair<Vec2, Vec2>> boxes_;  // bounding box of each wall
   Vec2 lo_, hi_;
   double tolerance_ = 0;
   Grid grid_;
 };
+using Table = BasicTable<double>;
 
 }  // namespace billiards::dynamics

@@ -1,64 +1,93 @@
 // Walls prepared for fast collision queries: each boundary piece with the quantities the
-// hot loop needs precomputed, and the span tests shared by every flight model.
+// hot loop needs precomputed, and the span tests shared by every flight model.  The scalar
+// type is a parameter (double for ensembles; long double and MPFR for reference runs): the
+// pieces' double coordinates convert exactly.
 //
 // Span tests are CLOSED and slightly EXTENDED (by `slack`, a few hundred ulps of the
-// coordinates): a crossing computed just past the end of a piece is still accepted, so a
-// trajectory through a joint is caught by at least one of the two pieces meeting there and
-// can never slip between them.  Consecutive pieces share their joint point bit for bit.
+// coordinates in the scalar type's precision): a crossing computed just past the end of a
+// piece is still accepted, so a trajectory through a joint is caught by at least one of the
+// two pieces meeting there and can never slip between them.  Consecutive pieces share their
+// joint point bit for bit.
 #pragma once
 
 #include "billiards/geometry/pieces.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace billiards::dynamics {
 
 using geometry::Vec2;
+using geometry::Vec2T;
 using geometry::cross;
 
 /// Relative slack of span tests, in units of the coordinate scale.
-inline constexpr double span_slack_ulps = 256 * std::numeric_limits<double>::epsilon();
+template <class Real>
+inline const Real span_slack_ulps = 256 * std::numeric_limits<Real>::epsilon();
 
-struct SegmentWall {
-  Vec2 a, b;
-  Vec2 normal;   // outward unit normal (right of a→b)
-  Vec2 dir;      // (b - a) / |b - a|²
-  double slack;  // absolute tolerance along the segment
+template <class Real>
+struct BasicSegmentWall {
+  using V = Vec2T<Real>;
+  V a, b;
+  V normal;    // outward unit normal (right of a→b)
+  V dir;       // (b - a) / |b - a|²
+  Real slack;  // absolute tolerance along the segment
 
-  explicit SegmentWall(const geometry::Segment& s);
+  explicit BasicSegmentWall(const geometry::Segment& s) : a(s.a.cast<Real>()), b(s.b.cast<Real>()) {
+    const V d = b - a;
+    normal = V(d.y(), -d.x()).normalized();  // right of travel = out of the region
+    dir = d / d.squaredNorm();
+    using std::max;
+    slack = span_slack_ulps<Real> * max({Real(a.template lpNorm<Eigen::Infinity>()),
+                                         Real(b.template lpNorm<Eigen::Infinity>()), Real(d.norm())});
+  }
   /// Is p (on the supporting line, to rounding) within the segment, ends included?
-  bool within_span(const Vec2& p) const {
-    const double s = (p - a).dot(dir);
-    const double tol = slack * dir.norm();
+  bool within_span(const V& p) const {
+    const Real s = (p - a).dot(dir);
+    const Real tol = slack * dir.norm();
     return s >= -tol && s <= 1 + tol;
   }
 };
 
-struct ArcWall {
-  Vec2 center;
-  double radius, radius2;
-  Vec2 from, to;        // endpoints relative to the centre, in counter-clockwise order
-  double ccw_extent;    // counter-clockwise angle from `from` to `to`, in (0, 2π]
-  bool focusing;        // region inside the circle (sweep > 0)
-  bool full;            // a whole circle
-  double slack;         // absolute tolerance (distance units)
+template <class Real>
+struct BasicArcWall {
+  using V = Vec2T<Real>;
+  V center;
+  Real radius, radius2;
+  V from, to;          // endpoints relative to the centre, in counter-clockwise order
+  double ccw_extent;   // counter-clockwise angle from `from` to `to`, in (0, 2π]
+  bool focusing;       // region inside the circle (sweep > 0)
+  bool full;           // a whole circle
+  Real slack;          // absolute tolerance (distance units)
 
-  explicit ArcWall(const geometry::Arc& a);
+  explicit BasicArcWall(const geometry::Arc& arc)
+      : center(arc.center.cast<Real>()), radius(arc.radius), radius2(radius * radius),
+        ccw_extent(std::abs(arc.sweep)), focusing(arc.sweep > 0), full(std::abs(arc.sweep) >= 2 * geometry::pi) {
+    // Store the endpoints in counter-clockwise order so one span test serves both senses.
+    const V s = arc.source.cast<Real>() - center, t = arc.target.cast<Real>() - center;
+    from = focusing ? s : t;
+    to = focusing ? t : s;
+    using std::max;
+    slack = span_slack_ulps<Real> * max(radius, Real(center.template lpNorm<Eigen::Infinity>()));
+  }
   /// Is p (on the circle, to rounding) within the arc, ends included?
-  bool within_span(const Vec2& p) const {
+  bool within_span(const V& p) const {
     if (full) return true;
-    const Vec2 u = p - center;
-    const double tol = slack * radius;
+    const V u = p - center;
+    const Real tol = slack * radius;
     if (ccw_extent <= geometry::pi) return cross(from, u) >= -tol && cross(u, to) >= -tol;
     // More than a half circle: inside unless strictly within the complementary arc (< π).
     return !(cross(to, u) > tol && cross(u, from) > tol);
   }
   /// Outward unit normal of the region at p.
-  Vec2 normal_at(const Vec2& p) const {
-    const Vec2 u = (p - center) / radius;
-    return focusing ? Vec2(u) : Vec2(-u);
+  V normal_at(const V& p) const {
+    const V u = (p - center) / radius;
+    return focusing ? V(u) : V(-u);
   }
 };
+
+using SegmentWall = BasicSegmentWall<double>;
+using ArcWall = BasicArcWall<double>;
 
 }  // namespace billiards::dynamics
