@@ -14,15 +14,20 @@ struct CommandResult {
   std::string output;  // stdout and stderr
 };
 
-/// Runs `billiard ARGS` from the source root and captures its output and exit status.
-inline CommandResult billiard(const std::string& args) {
-  const std::string cmd = "cd " BILLIARDS_SOURCE_DIR " && " BILLIARDS_BINARY " " + args + " 2>&1";
+/// Runs a shell command and captures its output (stdout and stderr) and exit status.
+inline CommandResult run_command(const std::string& command) {
+  const std::string cmd = command + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   std::string out;
   std::array<char, 4096> buf;
   while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+/// Runs `billiard ARGS` from the source root.
+inline CommandResult billiard(const std::string& args) {
+  return run_command("cd " BILLIARDS_SOURCE_DIR " && " BILLIARDS_BINARY " " + args);
 }
 
 inline std::string read_file(const std::filesystem::path& p) {

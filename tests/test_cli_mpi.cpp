@@ -12,15 +12,9 @@ namespace {
 /// Runs `mpirun -np K billiard ARGS` (oversubscribed: this machine may have fewer cores).
 CommandResult mpi_billiard(int ranks, const std::string& args) {
   // Open MPI refuses to start as root unless told; CI containers run as root.
-  const std::string cmd = "cd " BILLIARDS_SOURCE_DIR " && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-                          BILLIARDS_MPIEXEC " -np " + std::to_string(ranks) + " --oversubscribe " BILLIARDS_BINARY " " +
-                          args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf;
-  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return run_command("cd " BILLIARDS_SOURCE_DIR " && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                     BILLIARDS_MPIEXEC " -np " + std::to_string(ranks) + " --oversubscribe " BILLIARDS_BINARY " " +
+                     args);
 }
 
 bool have_mpi() { return std::string(BILLIARDS_MPIEXEC).size() > 0; }
