@@ -1,6 +1,7 @@
 // The standard-billiard coefficients (U = 0) against values derived by hand from the paper's
 // formulas, in 2-D and 3-D, and the fluctuation-dissipation relation they must satisfy.
 #include "billiards/analysis.hpp"
+#include "billiards/geometry.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -11,6 +12,11 @@ using namespace billiards;
 using geometry::pi;
 
 namespace {
+
+geometry::Measures measures(const char* name) {
+  return geometry::measures_of(
+      geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml").region);
+}
 
 /// Measures given by hand: T = ∮ n nᵀ dS is isotropic, (S/d)·I, for every table used here.
 geometry::Measures isotropic(int d, double V, double S) {
@@ -70,15 +76,27 @@ TEST_CASE("unit circle, |F| = 2, m = 1, omega = 5, E = 2: by hand, and both vali
   CHECK(c.warnings[1].find("v_E/(omega lambda)") != std::string::npos);
 }
 
-TEST_CASE("the paper's clover: lambda = 2.6096 and C = 0.5419 F^2/omega^2 (m = 1)") {
-  // The paper's V and S for R1 = 1, R2 = 2; W/S = F²/2 for F = F(x̂ + ŷ)/√2, as in the paper.
-  const double V = 10.300392650310146, S = 12.40024967735378, F = 10, omega = 40 * pi;
-  const auto c =
-      analysis::coefficients(isotropic(2, V, S), drive(Eigen::Vector2d(F, F) / std::sqrt(2.0), omega, 1), 0.5);
-  CHECK(c.mean_free_path == Approx(2.6095956711583).epsilon(1e-13));
-  CHECK(c.wall_integral / S == Approx(F * F / 2).epsilon(tight));
-  CHECK(c.C * omega * omega / (F * F) == Approx(std::sqrt(2.0) / 2.6095956711583).epsilon(1e-13));
+TEST_CASE("the paper's clover from its shape file: lambda = 2.6096 and C = 0.5419 F^2/omega^2") {
+  // The measures come from shapes/clover.yaml through the geometry layer; W/S = F²/2 for
+  // F = F(x̂ + ŷ)/√2 because the clover's boundary tensor is isotropic, as in the paper.
+  const auto m = measures("clover");
+  const double F = 10, omega = 40 * pi;
+  const auto c = analysis::coefficients(m, drive(Eigen::Vector2d(F, F) / std::sqrt(2.0), omega, 1), 0.5);
+  CHECK(c.mean_free_path == Approx(pi * c.volume / c.surface).epsilon(tight));
+  CHECK(std::abs(c.mean_free_path - 2.610) < 5e-4);
+  CHECK(c.wall_integral / c.surface == Approx(F * F / 2).epsilon(1e-12));
+  CHECK(c.C * omega * omega / (F * F) == Approx(std::sqrt(2.0) / c.mean_free_path).epsilon(1e-13));
   CHECK(std::abs(c.C * omega * omega / (F * F) - 0.5419) < 5e-5);
+  CHECK(c.warnings.empty());
+}
+
+TEST_CASE("the square and the circle from their shape files: T = 2 I and pi I, lambda = pi/4 and pi/2") {
+  const auto sq = analysis::coefficients(measures("square"), drive(Eigen::Vector2d(3, 4), 10, 2), 1.0);
+  CHECK(sq.wall_integral == Approx(50).epsilon(tight));  // Fᵀ(2I)F
+  CHECK(sq.mean_free_path == Approx(pi / 4).epsilon(tight));
+  const auto ci = analysis::coefficients(measures("circle"), drive(Eigen::Vector2d(0.6, 0.8), 4, 1), 0.5);
+  CHECK(ci.wall_integral == Approx(pi).epsilon(tight));  // π|F|² for any direction
+  CHECK(ci.mean_free_path == Approx(pi / 2).epsilon(tight));
 }
 
 TEST_CASE("unit ball in 3-D, F = z-hat, m = 1, E = 1/2: the paper's 3-D wall formula") {

@@ -2,6 +2,7 @@
 // its exact moments and CDF, and the finite-volume solver against it.
 #include "billiards/analysis.hpp"
 
+#include <boost/math/special_functions/bessel.hpp>
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -119,5 +120,40 @@ TEST_CASE("finite volumes (Chang-Cooper) follow the analytic eta from s = 0.01 t
       CHECK(lowest >= 0);
       CHECK(std::abs(mass - initial_mass) < 1e-12);  // conservative to rounding
     }
+  }
+}
+
+TEST_CASE("scaled Bessel function: continuous across its two methods, exact below") {
+  for (double nu : {1.0, 2.0}) {
+    CHECK(analysis::scaled_bessel_i(nu, 3.0) == Approx(boost::math::cyl_bessel_i(nu, 3.0) * std::exp(-3.0)).epsilon(1e-14));
+    // Boost is still finite at 650: the asymptotic series must agree there.
+    const double direct = boost::math::cyl_bessel_i(nu, 650.0) * std::exp(-650.0);
+    CHECK(direct == Approx(analysis::scaled_bessel_i(nu, 650.0)).epsilon(1e-13));
+  }
+}
+
+TEST_CASE("Fokker-Planck solution: normalized, and its moments grow as the equation says") {
+  for (int d : {2, 3}) {
+    for (double s : {0.1, 1.0, 10.0}) {
+      INFO("d = " << d << ", s = " << s);
+      CHECK(analysis::fokker_planck_moments(s, E0, d).norm == Approx(1).epsilon(2e-6));
+    }
+    // Small s: d<E>/ds = <√E> ≈ √E0, dVar/ds = 4 E0^{3/2}/(d+1) (g1 = C√E, g2 = 4C E^{3/2}/(d+1)).
+    const double s = 1e-3;
+    const auto m = analysis::fokker_planck_moments(s, E0, d);
+    CHECK((m.mean - E0) / s == Approx(std::sqrt(E0)).epsilon(2e-2));
+    CHECK(m.variance / s == Approx(4 * std::pow(E0, 1.5) / (d + 1)).epsilon(2e-2));
+    // At any s, d<E>/ds = <√E> (the drift g1 = C√E averaged over η): by central differences.
+    const double s1 = 2.0, ds = 1e-3;
+    const double slope = (analysis::fokker_planck_moments(s1 + ds, E0, d).mean -
+                          analysis::fokker_planck_moments(s1 - ds, E0, d).mean) / (2 * ds);
+    const int n = 200000;
+    const double hi = std::pow(40 * E0 + 50 * s1 * s1, 0.25), h = hi / n;
+    double root_mean = 0;
+    for (int i = 1; i < n; ++i) {
+      const double u = i * h;
+      root_mean += u * u * analysis::fokker_planck_eta(u * u * u * u, s1, E0, d) * 4 * u * u * u * h;
+    }
+    CHECK(slope == Approx(root_mean).epsilon(1e-5));
   }
 }
