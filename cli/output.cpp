@@ -26,8 +26,13 @@ OutputDir::~OutputDir() {
 }
 
 void OutputDir::write_text(const std::string& name, const std::string& text) const {
+  write_stream(name, [&](std::ostream& out) { out << text; });
+}
+
+void OutputDir::write_stream(const std::string& name, const std::function<void(std::ostream&)>& writer) const {
   std::ofstream out(path(name));
-  out << text;
+  writer(out);
+  out.flush();
   if (!out) throw std::runtime_error("cannot write " + path(name).string());
 }
 

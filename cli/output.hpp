@@ -5,6 +5,8 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <functional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -19,6 +21,8 @@ class OutputDir {
 
   std::filesystem::path path(const std::string& name) const { return tmp_ / name; }
   void write_text(const std::string& name, const std::string& text) const;
+  /// A file written piece by piece by `writer` (for outputs too large to hold as one string).
+  void write_stream(const std::string& name, const std::function<void(std::ostream&)>& writer) const;
   void write_json(const std::string& name, const nlohmann::json& j) const;
   /// A float64 matrix (rows × cols, row-major) in numpy's .npy format.
   void write_npy(const std::string& name, const std::vector<double>& data, std::size_t rows,

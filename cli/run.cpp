@@ -10,6 +10,7 @@
 #include "billiards/dynamics/forced_flight.hpp"
 
 #include <fmt/core.h>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <omp.h>
@@ -194,17 +195,20 @@ std::string fokker_planck_table(const Scene& scene, const analysis::Coefficients
   return csv;
 }
 
-std::string energies_csv(const Scene& scene, const EnsembleResult& r) {
+/// energies.csv, a row per particle, streamed: 10⁶ particles make ~0.4 GB of text.
+void write_energies_csv(std::ostream& out, const Scene& scene, const EnsembleResult& r) {
   const std::size_t n = scene.particles, m = scene.record_times.size();
-  std::string csv = "particle";
-  for (double t : scene.record_times) csv += fmt::format(",E(t={})", t);
-  csv += ",collisions,escaped\n";
+  out << "particle";
+  for (double t : scene.record_times) out << fmt::format(",E(t={})", t);
+  out << ",collisions,escaped\n";
+  fmt::memory_buffer row;
   for (std::size_t i = 0; i < n; ++i) {
-    csv += std::to_string(i);
-    for (std::size_t k = 0; k < m; ++k) csv += fmt::format(",{:.17g}", r.energies[i * m + k]);
-    csv += fmt::format(",{},{}\n", r.logs[i].collisions, int(r.logs[i].escaped));
+    row.clear();
+    fmt::format_to(std::back_inserter(row), "{}", i);
+    for (std::size_t k = 0; k < m; ++k) fmt::format_to(std::back_inserter(row), ",{:.17g}", r.energies[i * m + k]);
+    fmt::format_to(std::back_inserter(row), ",{},{}\n", r.logs[i].collisions, int(r.logs[i].escaped));
+    out.write(row.data(), std::streamsize(row.size()));
   }
-  return csv;
 }
 
 /// The flight model the scene needs, chosen at compile time for the whole ensemble.
@@ -267,7 +271,8 @@ std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_i
 
 void write_run_files(const OutputDir& out, const RunOutcome& run, const RunArgs& args) {
   const auto& scene = run.scene;
-  if (args.csv) out.write_text("energies.csv", energies_csv(scene, run.result));
+  if (args.csv)
+    out.write_stream("energies.csv", [&](std::ostream& os) { write_energies_csv(os, scene, run.result); });
   out.write_npy("energies.npy", run.result.energies, scene.particles, scene.record_times.size());
   out.write_json("summary.json", run.summary);
   if (run.prediction) out.write_text("fokker-planck.csv", fokker_planck_table(scene, *run.prediction, run.result));
