@@ -1,7 +1,8 @@
-// One flight code in three precisions: double, long double and 136-bit MPFR (the reference).
-// Chaos amplifies rounding at the Lyapunov rate; integrable tables do not.
+// One flight code in three precisions: double, long double and 136-bit MPFR (the reference),
+// free and driven.  Chaos amplifies rounding at the Lyapunov rate; integrable tables do not.
 #include "billiards/analysis/divergence.hpp"
 #include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/precision.hpp"
 #include "billiards/geometry.hpp"
 
@@ -18,6 +19,11 @@ namespace {
 geometry::Region2 shape(const std::string& name) {
   return geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml").region;
 }
+
+template <class T>
+struct Tag {
+  using type = T;
+};
 
 std::vector<dynamics::State> starts(const geometry::Region2& region, std::size_t count) {
   const dynamics::Table table(region);
@@ -102,4 +108,32 @@ TEST_CASE("an integrable table (the circle) does not amplify rounding exponentia
   // would give more than 8).
   CHECK(ed[n - 1] / ed[n / 2 - 1] < 8);
   CHECK(ed[n - 1] < 1e-7);
+}
+
+TEST_CASE("the driven flight in double, long double and MPFR: the same collisions; rounding grows at one rate") {
+  const auto region = shape("clover");
+  const auto s = starts(region, 20);
+  const std::size_t n = 40;
+  const auto drive = [](auto tag) {
+    using Real = typename decltype(tag)::type;
+    const Real a = Real(10) / sqrt(Real(2));  // the paper's F = 10 along (1, 1)/√2, m = 1, ω = 40π
+    return dynamics::BasicPeriodicDriveFlight<Real>{dynamics::Vec2T<Real>(a, a),
+                                                    40 * boost::math::constants::pi<Real>(), Real(0)};
+  };
+  // evolve() searches with no horizon: every wall's scan must end (it once looped at τ = ∞).
+  const auto ref = analysis::collision_points(region, drive(Tag<Reference>{}), s, n);
+  const auto d = analysis::collision_points(region, drive(Tag<double>{}), s, n);
+  const auto l = analysis::collision_points(region, drive(Tag<long double>{}), s, n);
+  for (std::size_t i = 0; i < s.size(); ++i) REQUIRE(ref[i].size() == n);
+  const auto ed = analysis::median_distance(d, ref, n), el = analysis::median_distance(l, ref, n);
+  // The first collisions agree to the roots' polish (a few ulps of the table's size).
+  CHECK(ed[0] < 1e-13);
+  CHECK(el[0] < 1e-16);
+  const double lambda_d = analysis::exponential_growth_rate(ed), lambda_l = analysis::exponential_growth_rate(el);
+  CHECK(lambda_d > 0.3);
+  CHECK(lambda_l == Approx(lambda_d).epsilon(0.25));
+  const std::size_t lost_d = analysis::first_exceeding(ed, 1e-3), lost_l = analysis::first_exceeding(el, 1e-3);
+  REQUIRE(lost_d > 0);
+  CHECK(lost_l >= lost_d);
+  CHECK(double(lost_l - lost_d) == Approx(std::log(std::ldexp(1.0, LDBL_MANT_DIG - DBL_MANT_DIG)) / lambda_d).margin(2));
 }

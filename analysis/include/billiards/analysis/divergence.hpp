@@ -13,23 +13,34 @@
 
 namespace billiards::analysis {
 
-/// Collision points (rounded to double) of free trajectories from `starts`, computed with the
-/// toolkit's flight code in the scalar type Real: [trajectory][collision].
-template <class Real>
-std::vector<std::vector<Eigen::Vector2d>> collision_points(const geometry::Region2& region,
+/// Collision points (rounded to double) of the trajectories from `starts` under `flight`, whose
+/// scalar type (double, long double, dynamics::Reference) sets the precision of the whole
+/// computation: [trajectory][collision].
+template <class Flight>
+std::vector<std::vector<Eigen::Vector2d>> collision_points(const geometry::Region2& region, const Flight& flight,
                                                            const std::vector<dynamics::State>& starts,
                                                            std::size_t collisions) {
+  using Real = typename Flight::Scalar;
   const dynamics::BasicTable<Real> table(region);
   std::vector<std::vector<Eigen::Vector2d>> points;
   for (const auto& s0 : starts) {
     dynamics::BasicState<Real> s;
     s.x = s0.x.cast<Real>();
     s.v = s0.v.cast<Real>();
+    s.t = s0.t;
     auto& p = points.emplace_back();
-    for (const auto& h : dynamics::evolve(table, dynamics::BasicFreeFlight<Real>{}, s, collisions))
+    for (const auto& h : dynamics::evolve(table, flight, flight.start(s), collisions))
       p.emplace_back(double(h.point.x()), double(h.point.y()));
   }
   return points;
+}
+
+/// The same for free flights in precision Real.
+template <class Real>
+std::vector<std::vector<Eigen::Vector2d>> collision_points(const geometry::Region2& region,
+                                                           const std::vector<dynamics::State>& starts,
+                                                           std::size_t collisions) {
+  return collision_points(region, dynamics::BasicFreeFlight<Real>{}, starts, collisions);
 }
 
 /// Median over trajectories of |a − reference| at each collision (+∞ past a trajectory's end).

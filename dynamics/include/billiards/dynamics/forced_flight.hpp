@@ -1,5 +1,6 @@
 // Flights under a uniform force: the static force F (parabolas) and the paper's periodic drive
-// F cos(ω t + phase) (Appendix B), both in closed form between collisions.
+// F cos(ω t + phase) (Appendix B), both in closed form between collisions, in any scalar type
+// (forced_flight.cpp instantiates double, long double and precision.hpp's Reference).
 //
 // Exit times are certified: for each wall, f(τ) measures how far beyond the wall the particle
 // is (n·(x − a) for a segment; ±(|x − c|² − r²) for an arc), and M bounds |f''| over the next
@@ -12,57 +13,79 @@
 
 #include "billiards/dynamics/flight.hpp"
 
+#include <boost/math/constants/constants.hpp>
+
 #include <cmath>
+#include <type_traits>
 
 namespace billiards::dynamics {
 
-/// State under a periodic drive: the drive's phase θ = ω t + phase, kept reduced to [0, 2π) in
-/// extended precision.  A plain double ω t at ω = 2560π, t = 1e4 would keep only 8 digits.
-struct DrivenState : State {
-  long double phase = 0;
+/// The drive's phase θ = ω t + phase is kept reduced to [0, 2π) in a type wider than double:
+/// long double for the hardware types, the reference type itself for MPFR.  A plain double
+/// ω t at ω = 2560π, t = 1e4 would keep only 8 digits.
+template <class Real>
+using PhaseOf = std::conditional_t<std::is_floating_point_v<Real>, long double, Real>;
+
+/// θ reduced to [0, 2π).
+template <class P>
+P reduce_phase(P theta) {
+  using std::fmod;
+  const P two_pi = boost::math::constants::two_pi<P>();
+  theta = fmod(theta, two_pi);
+  return theta < 0 ? P(theta + two_pi) : theta;
+}
+
+/// State under a periodic drive: the state plus the drive's phase.
+template <class Real>
+struct BasicDrivenState : BasicState<Real> {
+  PhaseOf<Real> phase = 0;
   /// sin and cos of `phase`, from which every exit-time search starts: computed once per
   /// flight instead of once per wall.  Set them with the phase (set_phase).
-  double sin_phase = 0, cos_phase = 1;
-  void set_phase(long double theta);
+  Real sin_phase = 0, cos_phase = 1;
+  void set_phase(const PhaseOf<Real>& theta) {
+    using std::cos;
+    using std::sin;
+    phase = reduce_phase(theta);
+    sin_phase = sin(Real(phase));
+    cos_phase = cos(Real(phase));
+  }
 };
+using DrivenState = BasicDrivenState<double>;
 
 /// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0).
-struct PeriodicDriveFlight {
-  using Scalar = double;
-  using State = DrivenState;
+template <class Real>
+struct BasicPeriodicDriveFlight {
+  using Scalar = Real;
+  using State = BasicDrivenState<Real>;
   static constexpr bool conserves_energy = false;
 
-  Vec2 accel;           // F / m
-  double omega;         // ω
-  double phase0 = 0;    // the drive's phase at t = 0
+  Vec2T<Real> accel;  // F / m
+  Real omega;         // ω
+  Real phase0 = 0;    // the drive's phase at t = 0
 
-  State start(const dynamics::State& s) const;
+  State start(const BasicState<Real>& s) const;
   /// Appendix B: v(t) = v_s + (F/mω)[sin θ(t) − sin θ_s],
   /// x(t) = x_s + [v_s − (F/mω) sin θ_s](t − t_s) − (F/mω²)[cos θ(t) − cos θ_s].
-  State advance(const State& s, double t) const;
-  double exit_time(const State& s, const SegmentWall& w, double t_end) const;
-  double exit_time(const State& s, const ArcWall& w, double t_end) const;
+  State advance(const State& s, const Real& t) const;
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
 };
+using PeriodicDriveFlight = BasicPeriodicDriveFlight<double>;
 
 /// A static uniform force F on a particle of mass m: parabolic flights.
-struct ConstantForceFlight {
-  using Scalar = double;
-  using State = dynamics::State;
+template <class Real>
+struct BasicConstantForceFlight {
+  using Scalar = Real;
+  using State = BasicState<Real>;
   static constexpr bool conserves_energy = false;  // kinetic energy changes between collisions
 
-  Vec2 accel;  // F / m
+  Vec2T<Real> accel;  // F / m
 
   State start(const State& s) const { return s; }
-  State advance(const State& s, double t) const;
-  double exit_time(const State& s, const SegmentWall& w, double t_end) const;
-  double exit_time(const State& s, const ArcWall& w, double t_end) const;
+  State advance(const State& s, const Real& t) const;
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
 };
-
-/// θ reduced to [0, 2π), in extended precision.
-inline long double reduce_phase(long double theta) {
-  constexpr long double two_pi = 6.283185307179586476925286766559005768L;
-  theta = std::fmod(theta, two_pi);
-  return theta < 0 ? theta + two_pi : theta;
-}
+using ConstantForceFlight = BasicConstantForceFlight<double>;
 
 }  // namespace billiards::dynamics
