@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   billiards::cli::add_coeffs(app);
   billiards::cli::add_plot(app);
   billiards::cli::add_fp(app);
+  billiards::cli::add_bench(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -31,4 +31,11 @@ class OutputDir {
   bool committed_ = false;
 };
 
+/// A script of scripts/ ($BILLIARDS_SCRIPTS overrides the folder); throws if it is missing.
+std::filesystem::path script_path(const std::string& name);
+/// Runs PYTHON SCRIPT ARGS... directly (no shell, so any path is passed as it is) and waits;
+/// PYTHON is Debian's /usr/bin/python3 (it has matplotlib) unless $BILLIARDS_PYTHON is set.
+/// Throws if it cannot start or does not exit with status 0.
+void run_python(const std::filesystem::path& script, const std::vector<std::string>& args);
+
 }  // namespace billiards::cli

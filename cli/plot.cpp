@@ -3,6 +3,7 @@
 // the dynamics uses; matplotlib (scripts/plot_shape.py) only draws the points it is given.
 #include "commands.hpp"
 #include "options.hpp"
+#include "output.hpp"
 
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/random.hpp"
@@ -83,15 +84,19 @@ struct TempFile {
   }
 };
 
-/// Where plot_shape.py is: $BILLIARDS_SCRIPTS, else the source tree this program was built from.
-fs::path plot_script() {
+}  // namespace
+
+// Scripts are found in $BILLIARDS_SCRIPTS, else in the source tree this program was built from.
+fs::path script_path(const std::string& name) {
   const char* env = std::getenv("BILLIARDS_SCRIPTS");
-  const fs::path script = fs::path(env ? env : BILLIARDS_SOURCE_DIR "/scripts") / "plot_shape.py";
+  const fs::path script = fs::path(env ? env : BILLIARDS_SOURCE_DIR "/scripts") / name;
   if (!fs::is_regular_file(script))
     throw std::runtime_error(fmt::format("{} not found (set BILLIARDS_SCRIPTS to the directory that holds it)",
                                          script.string()));
   return script;
 }
+
+namespace {
 
 /// Debian's interpreter, which has python3-matplotlib; $BILLIARDS_PYTHON overrides it.
 std::string python() {
@@ -99,7 +104,8 @@ std::string python() {
   return env ? env : "/usr/bin/python3";
 }
 
-/// Runs PYTHON SCRIPT ARGS... directly (no shell, so any path is passed as it is) and waits.
+}  // namespace
+
 void run_python(const fs::path& script, const std::vector<std::string>& args) {
   std::vector<std::string> argv_s = {python(), script.string()};
   argv_s.insert(argv_s.end(), args.begin(), args.end());
@@ -119,11 +125,13 @@ void run_python(const fs::path& script, const std::vector<std::string>& args) {
   throw std::runtime_error(fmt::format("drawing failed: {} {} ended with {}", argv_s[0], script.string(), how));
 }
 
+namespace {
+
 /// Draws `data` into `output`.  The script draws into a temporary file next to `output` that
 /// is renamed into place only on success, so `output` is either the complete picture or
 /// untouched.
 void draw(const nlohmann::json& data, const fs::path& output) {
-  const fs::path script = plot_script();
+  const fs::path script = script_path("plot_shape.py");
   const TempFile json{fs::temp_directory_path() / fmt::format("billiard-plot-{}.json", getpid())};
   std::ofstream out(json.path);
   out << data.dump();
