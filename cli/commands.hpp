@@ -13,6 +13,7 @@ void add_coeffs(CLI::App& app);
 void add_plot(CLI::App& app);
 void add_fp(CLI::App& app);
 void add_compare(CLI::App& app);
+void add_bench(CLI::App& app);
 
 /// The command line as typed, recorded in summary.json.
 void set_command_line(int argc, char** argv);

@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   billiards::cli::add_plot(app);
   billiards::cli::add_fp(app);
   billiards::cli::add_compare(app);
+  billiards::cli::add_bench(app);
   bool speaks = true;  // in an MPI job only the first rank prints; all compute
   try {
     const billiards::cli::Ranks ranks(argc, argv);
