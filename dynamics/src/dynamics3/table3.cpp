@@ -93,6 +93,11 @@ Table3::Table3(const Region3& region) : region_(region) {
   if (const auto* b = std::get_if<Ball>(&region.outer)) sphere(*b, true);
   for (const Ball& b : region.holes) sphere(b, false);
   bvh_ = Bvh(triangles_, 4 * slack);
+  // Store the triangles in the BVH's leaf order: a leaf's triangles are then contiguous.
+  std::vector<TriangleWall> sorted;
+  sorted.reserve(triangles_.size());
+  for (int i : bvh_.order()) sorted.push_back(triangles_[i]);
+  triangles_ = std::move(sorted);
 }
 
 void Table3::triangles_hit(const State3& s, Hit3& best) const {
@@ -100,34 +105,42 @@ void Table3::triangles_hit(const State3& s, Hit3& best) const {
   const Ray ray(s.x, s.v);
   const SlabRay slab(s);
   const auto& nodes = bvh_.nodes();
-  const auto& order = bvh_.order();
   const int base = int(planes_.size());
-  int stack[64], top = 0;
-  stack[top++] = 0;
+  struct Entry {
+    int node;
+    double t_in;  // where the ray enters its box
+  };
+  Entry stack[64];
+  int top = 0;
   double t_in;
+  if (slab.hits(nodes[0], best.t - s.t, t_in)) stack[top++] = {0, t_in};
   while (top > 0) {
-    const Bvh::Node& n = nodes[stack[--top]];
-    if (!slab.hits(n, best.t - s.t, t_in)) continue;
+    const Entry e = stack[--top];
+    if (s.t + e.t_in > best.t) continue;  // a nearer hit was found since it was pushed
+    const Bvh::Node& n = nodes[e.node];
     if (n.count > 0) {
       for (int i = n.first; i < n.first + n.count; ++i) {
-        const double t = exit_time(s, ray, triangles_[order[i]], best.t);
-        if (t < best.t) best.t = t, best.wall = base + order[i];
+        const double t = exit_time(s, ray, triangles_[i], best.t);
+        if (t < best.t) best.t = t, best.wall = base + i;
       }
       continue;
     }
-    // Visit the nearer child first so that `best` shrinks early.
-    const int left = int(&n - nodes.data()) + 1;
+    // Push the farther child first, so that the nearer one is searched first and `best`
+    // shrinks early.
+    const int left = e.node + 1;
     double t_left, t_right;
     const bool hit_left = slab.hits(nodes[left], best.t - s.t, t_left);
     const bool hit_right = slab.hits(nodes[n.right], best.t - s.t, t_right);
     if (hit_left && hit_right && t_left <= t_right) {
-      stack[top++] = n.right;
-      stack[top++] = left;
+      stack[top++] = {n.right, t_right};
+      stack[top++] = {left, t_left};
     } else if (hit_left && hit_right) {
-      stack[top++] = left;
-      stack[top++] = n.right;
-    } else if (hit_left || hit_right) {
-      stack[top++] = hit_left ? left : n.right;
+      stack[top++] = {left, t_left};
+      stack[top++] = {n.right, t_right};
+    } else if (hit_left) {
+      stack[top++] = {left, t_left};
+    } else if (hit_right) {
+      stack[top++] = {n.right, t_right};
     }
   }
 }

@@ -13,7 +13,7 @@ namespace billiards::dynamics3 {
 /// Where and when a flight leaves the region through a wall.
 struct Hit3 {
   double t = never;
-  int wall = -1;  // planes first, then triangles, then spheres
+  int wall = -1;  // planes first, then triangles (in BVH order), then spheres
   Vec3 point = Vec3::Zero();
   Vec3 normal = Vec3::Zero();  // outward unit normal at `point`
   bool found() const { return wall >= 0; }
