@@ -1,11 +1,14 @@
 // 3-D shapes: exact measures of every bundled shape against closed forms (or Monte Carlo and
 // independent sums for the 1e5-triangle mesh), and every kind of invalid input rejected with
 // its file, line and reason.
+#include "cli_helpers.hpp"
+
 #include "billiards/dynamics/random.hpp"
 #include "billiards/geometry/input_error.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -195,4 +198,27 @@ TEST_CASE("invalid 3-D shape files name the line and the problem") {
 TEST_CASE("shape_dimension tells 2-D from 3-D files") {
   CHECK(shape_dimension(shapes3 + "sinai3.yaml") == 3);
   CHECK(shape_dimension(BILLIARDS_SOURCE_DIR "/shapes/sinai.yaml") == 2);
+}
+
+TEST_CASE("billiard info reads 3-D shape files") {
+  const auto r = billiard("info shapes/3d/sinai3.yaml --json --set L=2");
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(r.output);
+  CHECK(j["dimension"] == 3);
+  CHECK(close(j["V"].get<double>(), 8 - 4 * pi / 64 / 3));
+  CHECK(close(j["S"].get<double>(), 24 + 4 * pi / 16));
+  CHECK(j["boundary_tensor"].size() == 3);
+  CHECK(j["bbox"][1][2] == 1.0);
+  CHECK(j["boundary"]["kind"] == "polyhedron");
+  const auto text = billiard("info shapes/3d/l-prism.yaml");
+  CHECK(text.status == 0);
+  CHECK_THAT(text.output, Catch::Contains("mean free path   1.09090909090909"));
+  const auto dir = scratch("info3");
+  write_file(dir / "bad.yaml", "# open\ndimension: 3\nboundary:\n  mesh: open.off\n");
+  write_file(dir / "open.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const auto bad = billiard("info " + (dir / "bad.yaml").string());
+  CHECK(bad.status != 0);
+  CHECK_THAT(bad.output, Catch::StartsWith("billiard: error: " + (dir / "bad.yaml").string() + ":4: mesh ") &&
+                             Catch::Contains("open.off: not closed"));
+  std::filesystem::remove_all(dir);
 }
