@@ -141,6 +141,32 @@ TEST_CASE("a valid cube mesh loads, and its measures are exact") {
   check(measures_of(s.region), 1 - 4 * pi * 0.064 / 3, 6 + 4 * pi * 0.16, (2 + 4 * pi * 0.16 / 3) * I);
 }
 
+TEST_CASE("the same cube read from OFF, OBJ and STL") {
+  const double v[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  std::istringstream in(cube_faces);
+  std::string obj, stl = "solid cube\n";
+  for (const auto& p : v) obj += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(p[2]) + "\n";
+  int n, a, b, c;
+  while (in >> n >> a >> b >> c) {
+    obj += "f " + std::to_string(a + 1) + " " + std::to_string(b + 1) + " " + std::to_string(c + 1) + "\n";
+    stl += "facet normal 0 0 0\nouter loop\n";  // STL repeats the vertices of every facet
+    for (int k : {a, b, c})
+      stl += "vertex " + std::to_string(v[k][0]) + " " + std::to_string(v[k][1]) + " " + std::to_string(v[k][2]) + "\n";
+    stl += "endloop\nendfacet\n";
+  }
+  stl += "endsolid cube\n";
+  Folder f;
+  f.write("m.off", "OFF\n" + cube_vertices + cube_faces);
+  f.write("m.obj", obj);
+  f.write("m.stl", stl);
+  for (const char* file : {"m.off", "m.obj", "m.stl"}) {
+    INFO(file);
+    const auto s = parse_shape3(std::string("dimension: 3\nboundary:\n  mesh: ") + file + "\n", (f.dir / "s.yaml").string());
+    CHECK(std::get<TriangleMesh>(s.region.outer).vertices.size() == 8);
+    check(measures_of(s.region), 1, 6, 2 * I);
+  }
+}
+
 TEST_CASE("invalid meshes are rejected with the reason") {
   mesh_rejected("OFF\n8 10 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n" +
                     cube_faces.substr(0, cube_faces.rfind("3 3 0 4")),
@@ -190,6 +216,13 @@ TEST_CASE("invalid 3-D shape files name the line and the problem") {
   rejected("dimension: 3\nboundary:\n  polyhedron:\n" + three + "    - {normal: [-1, -1, -1], offset: 1}\n"
            "    - {normal: [2, 0, 0], offset: 4}\n",
            "s.yaml:8: this plane does not bound the polyhedron");
+  rejected("dimension: 3\nboundary:\n  polyhedron:\n" + three + "    - {normal: [-1, -1, -1], offset: 1}\n"
+           "    - {normal: [2, 0, 0], offset: 2}\n",
+           "s.yaml:8: this plane repeats the plane at line 4");
+  rejected("dimension: 3\nboundary:\n  polyhedron:\n" + three +
+               "    - {normal: [-1, 0, 0], offset: -1}\n    - {normal: [0, -1, 0], offset: 1}\n"
+               "    - {normal: [0, 0, -1], offset: 1}\n",
+           "s.yaml:5: this plane does not bound the polyhedron");  // a slab of zero thickness
   rejected("dimension: 3\nboundary:\n  polyhedron:\n" + three + "    - {normal: [0, 0, 0], offset: 1}\n",
            "s.yaml:7: the normal must not be zero");
   CHECK_THROWS_WITH(load_shape3(shapes3 + "cube.yaml", {{"M", "2"}}), Catch::Contains("'M', which is not a parameter"));

@@ -109,6 +109,8 @@ double exit_time(const State3& s, const SphereWall& w, double t_end) {
   double dt;
   if (w.focusing) {
     if (b >= 0 && c >= 0) return c <= near ? s.t : never;  // on the sphere moving out: now
+    // Outside the sphere (escaped) and moving in: a miss or a graze is no exit.
+    if (c > 0 && sphere_discriminant_sign_filtered(s.x, w.center, s.v, w.radius) <= 0) return never;
     const double root = std::sqrt(std::max(0.0, sphere_discriminant(f, s.v, w.radius2)));
     dt = b <= 0 ? (root - b) / a : -c / (b + root);
   } else {

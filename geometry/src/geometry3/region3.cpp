@@ -64,9 +64,8 @@ struct Accumulator {
     m.bbox_lo = Vec3::Constant(INFINITY);
     m.bbox_hi = Vec3::Constant(-INFINITY);
   }
-  /// A flat piece of wall of area `area` and outward unit normal `n`.
-  void wall(double area, const Vec3& n) {
-    m.surface += area;
+  /// A flat piece of wall of area `area` and outward unit normal `n`: its part of ∫ n nᵀ dS.
+  void tensor(double area, const Vec3& n) {
     const Eigen::Matrix3d nn = n * n.transpose();  // evaluated first, so exactly symmetric
     m.boundary_tensor += area * nn;
   }
@@ -86,7 +85,8 @@ struct Accumulator {
 void add_outer(Accumulator& acc, const ConvexPolyhedron& p) {
   for (std::size_t i = 0; i < p.planes.size(); ++i) {
     const double area = polygon_area(p.faces[i], p.planes[i].normal);
-    acc.wall(area, p.planes[i].normal);
+    acc.m.surface += area;
+    acc.tensor(area, p.planes[i].normal);
     acc.m.volume += p.planes[i].offset * area / 3;  // cone from the origin over the face
     for (const Vec3& v : p.faces[i]) acc.extend(v);
   }
@@ -97,8 +97,7 @@ void add_outer(Accumulator& acc, const TriangleMesh& mesh) {
   for (const auto& t : mesh.triangles) {
     const Vec3 &a = mesh.vertices[t[0]], &b = mesh.vertices[t[1]], &c = mesh.vertices[t[2]];
     const Vec3 twice = (b - a).cross(c - a);
-    const Eigen::Matrix3d nn = twice.normalized() * twice.normalized().transpose();
-    acc.m.boundary_tensor += 0.5 * twice.norm() * nn;
+    acc.tensor(0.5 * twice.norm(), twice.normalized());
   }
   acc.m.surface += mesh.locator->area();
   for (const Vec3& v : mesh.vertices) acc.extend(v);
@@ -116,6 +115,11 @@ std::vector<std::vector<Vec3>> convex_faces(const std::vector<Plane>& given, con
   double scale = 1;
   for (const Plane& p : given) scale = std::max(scale, std::abs(p.offset));
   const double far = 1e6 * scale;  // "infinitely" far for any sensible polyhedron
+  for (std::size_t i = 0; i < given.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if ((given[i].normal - given[j].normal).norm() <= 1e-12 && std::abs(given[i].offset - given[j].offset) <= 1e-12 * scale)
+        throw InputError(given[i].where.file, given[i].where.line,
+                         "this plane repeats the plane at line " + std::to_string(given[j].where.line));
   std::vector<std::vector<Vec3>> faces;
   for (int i = 0; i < int(given.size()); ++i) {
     // Start from a huge square on plane i, bounded by four extra planes, and clip.

@@ -41,6 +41,7 @@ class Bvh {
 
 class Table3 {
  public:
+  /// Keeps a reference to `region` (for point location), which must outlive the table.
   explicit Table3(const geometry3::Region3& region);
 
   /// The first wall the straight flight from `s` leaves the region through, before `t_end`.
