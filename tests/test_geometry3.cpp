@@ -167,6 +167,30 @@ TEST_CASE("the same cube read from OFF, OBJ and STL") {
   }
 }
 
+/// The unit cube's OFF with a cube [1/4, 3/4]³ inside it, its faces reversed or not.
+std::string cube_with_cavity(bool cavity_reversed) {
+  std::string off = "OFF\n16 24 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+                    ".25 .25 .25\n.75 .25 .25\n.75 .75 .25\n.25 .75 .25\n.25 .25 .75\n.75 .25 .75\n.75 .75 .75\n.25 .75 .75\n" +
+                    cube_faces;
+  std::istringstream in(cube_faces);
+  int n, a, b, c;
+  while (in >> n >> a >> b >> c) {
+    if (cavity_reversed) std::swap(b, c);
+    off += "3 " + std::to_string(a + 8) + " " + std::to_string(b + 8) + " " + std::to_string(c + 8) + "\n";
+  }
+  return off;
+}
+
+TEST_CASE("a mesh with a cavity: inward-facing cavity accepted, outward-facing rejected") {
+  Folder f;
+  f.write("m.off", cube_with_cavity(true));
+  const auto s = parse_shape3("dimension: 3\nboundary:\n  mesh: m.off\n", (f.dir / "s.yaml").string());
+  check(measures_of(s.region), 1 - 0.125, 6 + 1.5, 2.5 * I);
+  CHECK(contains(s.region, Vec3(0.1, 0.1, 0.1)));
+  CHECK(!contains(s.region, Vec3(0.5, 0.5, 0.5)));
+  mesh_rejected(cube_with_cavity(false), "a nested component is oriented like its enclosing one");
+}
+
 TEST_CASE("invalid meshes are rejected with the reason") {
   mesh_rejected("OFF\n8 10 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n" +
                     cube_faces.substr(0, cube_faces.rfind("3 3 0 4")),

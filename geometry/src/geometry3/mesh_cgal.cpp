@@ -139,6 +139,9 @@ TriangleMesh read_mesh(const std::string& path, const SourceRef& where) {
                 std::to_string(crossing.size()) + " pairs)");
   if (!PMP::is_outward_oriented(mesh))
     return fail("inward oriented: list each face counter-clockwise seen from outside");
+  // is_outward_oriented looks at the outermost component only; a cavity must face inward.
+  if (!PMP::does_bound_a_volume(mesh))
+    return fail("a nested component is oriented like its enclosing one (a cavity's faces must point into the cavity)");
   TriangleMesh out = from_cgal(mesh);
   out.file = path;
   out.locator = std::make_shared<const MeshLocator>(out);
