@@ -18,6 +18,11 @@ namespace {
 
 const std::string shapes3 = BILLIARDS_SOURCE_DIR "/shapes/3d/";
 
+/// The unit cube as 12 triangles, counter-clockwise seen from outside.
+const std::string cube_off =
+    "OFF\n8 12 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+    "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+
 /// Is x outside the region by more than rounding?  After a corner hit a particle may sit a
 /// few ulps beyond a wall (and fly zero time), as in 2-D; the distance decides, computed
 /// independently of the collision code (closed forms; CGAL's AABB tree for meshes).
@@ -72,8 +77,7 @@ RunStats run(const Table3& table, int particles, double T) {
 }
 
 /// Runs ~`target` collisions in `name` and compares the rate with v/λ.
-void check_rate(const std::string& name, long target) {
-  const auto shape = geometry3::load_shape3(shapes3 + name + ".yaml");
+void check_rate(const geometry3::Shape3& shape, const std::string& name, long target) {
   const Table3 table(shape.region);
   const double lambda = geometry::mean_free_path(measures_of(shape.region));
   const int particles = 4000;
@@ -92,8 +96,19 @@ void check_rate(const std::string& name, long target) {
 }  // namespace
 
 TEST_CASE("free collision rate is v / lambda with lambda = 4V/S, and nothing escapes") {
-  for (const char* name : {"cube", "ball", "sinai3", "octahedron", "l-prism"}) check_rate(name, 1000000);
-  check_rate("bumpy-100k", 1000000);
+  for (const char* name : {"cube", "ball", "sinai3", "octahedron", "l-prism", "bumpy-100k"})
+    check_rate(geometry3::load_shape3(shapes3 + name + ".yaml"), name, 1000000);
+}
+
+TEST_CASE("a triangulated cube with a ball inside: rate v / lambda, nothing escapes") {
+  const auto dir = std::filesystem::temp_directory_path() / ("billiards-dynamics3-ball-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "cube.off") << cube_off;
+  const auto shape = geometry3::parse_shape3(
+      "dimension: 3\nboundary:\n  mesh: cube.off\nholes:\n  - ball: {center: [0.4, 0.5, 0.6], radius: 0.3}\n",
+      (dir / "s.yaml").string());
+  std::filesystem::remove_all(dir);
+  check_rate(shape, "cube mesh + ball", 300000);
 }
 
 TEST_CASE("a flight into a corner of the cube comes back: v -> -v") {
@@ -125,9 +140,7 @@ TEST_CASE("triangle meshes are watertight: rays through edges and vertices alway
   // faces, at its edges and at its vertices.
   const auto dir = std::filesystem::temp_directory_path() / ("billiards-dynamics3-" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "cube.off") << "OFF\n8 12 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
-                                     "3 0 2 1\n3 0 3 2\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n"
-                                     "3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+  std::ofstream(dir / "cube.off") << cube_off;
   const auto shape = geometry3::parse_shape3("dimension: 3\nboundary:\n  mesh: cube.off\n", (dir / "s.yaml").string());
   std::filesystem::remove_all(dir);
   const Table3 table(shape.region);
