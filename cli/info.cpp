@@ -3,6 +3,7 @@
 #include "options.hpp"
 
 #include "billiards/geometry.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -36,6 +37,44 @@ nlohmann::json pieces_json(const geometry::Region2& region) {
   return out;
 }
 
+/// `billiard info` for a 3-D shape file (`dimension: 3`).
+void print_info3(const std::string& path, const Overrides& set, bool json) {
+  using namespace geometry3;
+  const auto shape = load_shape3(path, set);
+  const auto m = measures_of(shape.region);
+  const auto& T = m.boundary_tensor;
+  nlohmann::json boundary = std::visit(
+      [](const auto& b) -> nlohmann::json {
+        using B = std::decay_t<decltype(b)>;
+        if constexpr (std::is_same_v<B, ConvexPolyhedron>) return {{"kind", "polyhedron"}, {"faces", b.planes.size()}};
+        else if constexpr (std::is_same_v<B, TriangleMesh>)
+          return {{"kind", "mesh"}, {"mesh_file", b.file}, {"triangles", b.triangles.size()}, {"vertices", b.vertices.size()}};
+        else return {{"kind", "sphere"}, {"center", {b.center.x(), b.center.y(), b.center.z()}}, {"radius", b.radius}};
+      },
+      shape.region.outer);
+  const nlohmann::json info = {
+      {"name", shape.region.name}, {"file", path}, {"dimension", 3}, {"V", m.volume}, {"S", m.surface},
+      {"mean_free_path", geometry::mean_free_path(m)},
+      {"boundary_tensor", {{T(0, 0), T(0, 1), T(0, 2)}, {T(1, 0), T(1, 1), T(1, 2)}, {T(2, 0), T(2, 1), T(2, 2)}}},
+      {"bbox", {{m.bbox_lo(0), m.bbox_lo(1), m.bbox_lo(2)}, {m.bbox_hi(0), m.bbox_hi(1), m.bbox_hi(2)}}},
+      {"parameters", shape.parameters}, {"holes", shape.region.holes.size()}, {"boundary", boundary}};
+  if (json) {
+    std::cout << info.dump(2) << "\n";
+    return;
+  }
+  if (!shape.description.empty()) fmt::print("{}\n\n", shape.description);
+  fmt::print("shape            {} ({}), dimension 3\n", shape.region.name, path);
+  fmt::print("volume V         {:.15g}\n", m.volume);
+  fmt::print("surface S        {:.15g}\n", m.surface);
+  fmt::print("mean free path   {:.15g}   (lambda = 4 V / S)\n", geometry::mean_free_path(m));
+  fmt::print("boundary tensor  [[{:.12g}, {:.12g}, {:.12g}], [{:.12g}, {:.12g}, {:.12g}], [{:.12g}, {:.12g}, {:.12g}]]"
+             "   (int n n^T dS)\n", T(0, 0), T(0, 1), T(0, 2), T(1, 0), T(1, 1), T(1, 2), T(2, 0), T(2, 1), T(2, 2));
+  fmt::print("bounding box     [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]\n", m.bbox_lo(0), m.bbox_hi(0),
+             m.bbox_lo(1), m.bbox_hi(1), m.bbox_lo(2), m.bbox_hi(2));
+  fmt::print("boundary         {}\n", boundary.dump());
+  fmt::print("holes            {} (balls)\n", shape.region.holes.size());
+}
+
 }  // namespace
 
 nlohmann::json shape_info(const geometry::Shape& shape) {
@@ -66,6 +105,8 @@ void add_info(CLI::App& app) {
   cmd->add_flag("--json", args->json, "print JSON instead of text");
   add_set_option(cmd, args->set);
   cmd->callback([args] {
+    if (geometry3::shape_dimension(args->shape) == 3)
+      return print_info3(args->shape, parse_overrides(args->set), args->json);
     const auto shape = geometry::load_shape(args->shape, parse_overrides(args->set));
     const auto info = shape_info(shape);
     if (args->json) {

@@ -1,0 +1,124 @@
+// Free 3-D flights: collisions per second on one core for the 3-D Sinai billiard and the
+// 1e5-triangle mesh, with two baselines in the same process:
+//   sinai (2-D)  — the 2-D kernels on shapes/sinai.yaml (bench_free's code path);
+//   CGAL AABB    — the mesh's collisions found by CGAL's AABB_tree::first_intersection (the
+//                  face just left skipped), instead of the toolkit's BVH and watertight test.
+// Usage: bench_free3 [collisions per shape, default 5e6]
+#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics3/table3.hpp"
+#include "billiards/geometry.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <fmt/core.h>
+
+#include <chrono>
+#include <cstdlib>
+
+using namespace billiards;
+using dynamics3::State3;
+using geometry3::Vec3;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Collisions per second of one thread running 64 particles one after the other; escapes.
+std::pair<double, long> toolkit3(const geometry3::Region3& region, double collisions) {
+  const dynamics3::Table3 table(region);
+  const int particles = 64;
+  const double T = collisions / particles * geometry::mean_free_path(geometry3::measures_of(region));
+  std::vector<State3> initial;
+  for (int i = 0; i < particles; ++i) {
+    dynamics::ParticleRng rng(1, i);
+    initial.push_back(dynamics3::sample_microcanonical(table, 1.0, rng));
+  }
+  long n = 0, escapes = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (State3 s : initial) {
+    for (;;) {
+      const auto hit = table.collision(s, T);
+      if (!hit.found()) {
+        escapes += s.t < T && table.collision(s).t <= T;  // no wall at all before T
+        break;
+      }
+      dynamics3::bounce(s, hit, 1.0);
+      ++n;
+    }
+  }
+  return {n / seconds_since(start), escapes};
+}
+
+/// The same flights with CGAL's AABB tree over the mesh triangles (EPICK, ray queries).
+std::pair<double, long> cgal_aabb(const geometry3::TriangleMesh& mesh, const geometry3::Region3& region,
+                                  double collisions) {
+  using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+  using Triangles = std::vector<K::Triangle_3>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, Triangles::const_iterator>>>;
+  const auto point = [](const Vec3& p) { return K::Point_3(p.x(), p.y(), p.z()); };
+  Triangles tris;
+  for (const auto& t : mesh.triangles)
+    tris.emplace_back(point(mesh.vertices[t[0]]), point(mesh.vertices[t[1]]), point(mesh.vertices[t[2]]));
+  Tree tree(tris.cbegin(), tris.cend());
+  const dynamics3::Table3 table(region);  // for sampling only
+  const int particles = 64;
+  const long per_particle = long(collisions / particles);
+  long n = 0, escapes = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (int i = 0; i < particles; ++i) {
+    dynamics::ParticleRng rng(1, i);
+    State3 s = dynamics3::sample_microcanonical(table, 1.0, rng);
+    Triangles::const_iterator last = tris.cend();
+    for (long k = 0; k < per_particle; ++k) {
+      const K::Ray_3 ray(point(s.x), K::Vector_3(s.v.x(), s.v.y(), s.v.z()));
+      const auto hit = tree.first_intersection(ray, [&](Triangles::const_iterator f) { return f == last; });
+      const K::Point_3* p = hit ? boost::get<K::Point_3>(&hit->first) : nullptr;
+      if (!p) {
+        ++escapes;
+        break;
+      }
+      last = hit->second;
+      const auto nrm = CGAL::unit_normal(last->vertex(0), last->vertex(1), last->vertex(2));
+      const Vec3 normal(nrm.x(), nrm.y(), nrm.z());
+      s.x = Vec3(p->x(), p->y(), p->z());
+      s.v -= 2 * s.v.dot(normal) * normal;
+      ++n;
+    }
+  }
+  return {n / seconds_since(start), escapes};
+}
+
+double sinai2(double collisions) {
+  const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/sinai.yaml");
+  const dynamics::Table table(shape.region);
+  const dynamics::FreeFlight flight;
+  dynamics::RunOptions opt;
+  opt.record_times = {collisions / 64 * geometry::mean_free_path(geometry::measures_of(shape.region))};
+  const auto initial = dynamics::microcanonical(table, flight, 1.0, 1);
+  const auto start = std::chrono::steady_clock::now();
+  const auto res = dynamics::run_ensemble(table, flight, initial, opt, 64, 1);
+  return res.collisions() / seconds_since(start);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const double n = argc > 1 ? std::atof(argv[1]) : 5e6;
+  fmt::print("sinai (2-D), toolkit: {:.2f} M collisions/s\n", sinai2(n) / 1e6);
+  for (const char* name : {"sinai3", "bumpy-100k"}) {
+    const auto shape = geometry3::load_shape3(fmt::format("{}/shapes/3d/{}.yaml", BILLIARDS_SOURCE_DIR, name));
+    const auto [rate, escapes] = toolkit3(shape.region, n);
+    fmt::print("{}, toolkit: {:.2f} M collisions/s, {} escapes\n", name, rate / 1e6, escapes);
+    if (const auto* mesh = std::get_if<geometry3::TriangleMesh>(&shape.region.outer)) {
+      const auto [cgal, cgal_escapes] = cgal_aabb(*mesh, shape.region, n / 10);
+      fmt::print("{}, CGAL AABB_tree first_intersection: {:.3f} M collisions/s, {} escapes; toolkit / CGAL = {:.1f}\n",
+                 name, cgal / 1e6, cgal_escapes, rate / cgal);
+    }
+  }
+  return 0;
+}

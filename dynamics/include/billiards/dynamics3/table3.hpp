@@ -1,0 +1,74 @@
+// A 3-D region prepared for collision queries: plane, triangle and sphere walls, and a
+// bounding-volume hierarchy over the triangles of a mesh.
+#pragma once
+
+#include "billiards/dynamics/random.hpp"
+#include "billiards/dynamics3/walls3.hpp"
+#include "billiards/geometry3/region3.hpp"
+
+#include <vector>
+
+namespace billiards::dynamics3 {
+
+/// Where and when a flight leaves the region through a wall.
+struct Hit3 {
+  double t = never;
+  int wall = -1;  // planes first, then triangles (in BVH order), then spheres
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::Zero();  // outward unit normal at `point`
+  bool found() const { return wall >= 0; }
+};
+
+/// Median-split BVH over triangles; boxes are padded by the walls' slack so that a ray
+/// within rounding of a triangle is never culled by its box.
+class Bvh {
+ public:
+  struct Node {
+    Vec3 lo, hi;
+    int first = 0, count = 0;  // a leaf: triangles [first, first + count) of `order`
+    int right = 0;             // an inner node: left child is the next node, right child here
+  };
+  Bvh() = default;
+  Bvh(const std::vector<TriangleWall>& triangles, double pad);
+  const std::vector<Node>& nodes() const { return nodes_; }
+  const std::vector<int>& order() const { return order_; }
+
+ private:
+  int build(const std::vector<TriangleWall>& tris, int first, int count, double pad);
+  std::vector<Node> nodes_;
+  std::vector<int> order_;
+};
+
+class Table3 {
+ public:
+  /// Keeps a reference to `region` (for point location), which must outlive the table.
+  explicit Table3(const geometry3::Region3& region);
+
+  /// The first wall the straight flight from `s` leaves the region through, before `t_end`.
+  /// For a particle inside the region and t_end = never, found() == false means an escape.
+  Hit3 collision(const State3& s, double t_end = never) const;
+  const geometry3::Region3& region() const { return region_; }
+  std::size_t wall_count() const { return planes_.size() + triangles_.size() + spheres_.size(); }
+  const Vec3& lo() const { return lo_; }  // bounding box
+  const Vec3& hi() const { return hi_; }
+
+ private:
+  void triangles_hit(const State3& s, Hit3& best) const;
+  Vec3 normal_at(int wall, const Vec3& x) const;
+
+  const geometry3::Region3& region_;
+  std::vector<PlaneWall> planes_;
+  std::vector<TriangleWall> triangles_;
+  std::vector<SphereWall> spheres_;
+  Bvh bvh_;
+  Vec3 lo_, hi_;
+};
+
+/// Specular reflection at the hit, restoring the speed² `v2` of the particle's start (so that
+/// rounding cannot accumulate into an energy drift).
+void bounce(State3& s, const Hit3& hit, double v2);
+
+/// Position uniform in the region (rejection from the bounding box), velocity isotropic.
+State3 sample_microcanonical(const Table3& table, double speed, dynamics::ParticleRng& rng);
+
+}  // namespace billiards::dynamics3

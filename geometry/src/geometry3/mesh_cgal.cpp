@@ -1,0 +1,151 @@
+// Triangle meshes through CGAL: reading OFF/OBJ/STL, validation with Polygon_mesh_processing,
+// point location and distances with an AABB tree, volume and area.  The only translation unit
+// of geometry3 that sees CGAL (it needs -frounding-math and compiles slowly).
+#include "billiards/geometry3/region3.hpp"
+
+#include "billiards/geometry/input_error.hpp"
+
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
+#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <filesystem>
+#include <map>
+
+namespace billiards::geometry3 {
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = K::Point_3;
+using Mesh = CGAL::Surface_mesh<Point>;
+using Polygons = std::vector<std::vector<std::size_t>>;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+/// Why a polygon soup is not an oriented manifold surface, naming the faces (0-based, as in
+/// the file).
+std::string why_not_manifold(const Polygons& polygons) {
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> directed;
+  std::map<std::pair<std::size_t, std::size_t>, int> undirected;
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    const auto& p = polygons[f];
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const std::size_t a = p[k], b = p[(k + 1) % p.size()];
+      directed[{a, b}].push_back(f);
+      ++undirected[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  for (const auto& [e, n] : undirected)
+    if (n > 2)
+      return "not manifold: the edge between vertices " + std::to_string(e.first) + " and " +
+             std::to_string(e.second) + " is shared by " + std::to_string(n) + " faces";
+  for (const auto& [e, faces] : directed)
+    if (faces.size() > 1)
+      return "faces " + std::to_string(faces[0]) + " and " + std::to_string(faces[1]) +
+             " are inconsistently oriented (both run from vertex " + std::to_string(e.first) +
+             " to " + std::to_string(e.second) + ")";
+  return "not manifold: a vertex joins two sheets of the surface";
+}
+
+Mesh to_cgal(const TriangleMesh& m) {
+  Mesh mesh;
+  std::vector<Mesh::Vertex_index> v;
+  for (const Vec3& p : m.vertices) v.push_back(mesh.add_vertex(Point(p.x(), p.y(), p.z())));
+  for (const auto& t : m.triangles) mesh.add_face(v[t[0]], v[t[1]], v[t[2]]);
+  return mesh;
+}
+
+TriangleMesh from_cgal(const Mesh& mesh) {
+  TriangleMesh out;
+  std::map<Mesh::Vertex_index, int> index;
+  for (auto v : mesh.vertices()) {
+    index[v] = int(out.vertices.size());
+    const Point& p = mesh.point(v);
+    out.vertices.emplace_back(p.x(), p.y(), p.z());
+  }
+  for (auto f : mesh.faces()) {
+    std::array<int, 3> t{};
+    int k = 0;
+    for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) t[k++] = index[v];
+    out.triangles.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace
+
+struct MeshLocator::Impl {
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
+  Mesh mesh;
+  Tree tree;
+  std::unique_ptr<CGAL::Side_of_triangle_mesh<Mesh, K>> side;
+
+  explicit Impl(Mesh m) : mesh(std::move(m)), tree(faces(mesh).first, faces(mesh).second, mesh) {
+    tree.accelerate_distance_queries();
+    side = std::make_unique<CGAL::Side_of_triangle_mesh<Mesh, K>>(tree);
+  }
+};
+
+MeshLocator::MeshLocator(const TriangleMesh& mesh) : impl_(std::make_unique<Impl>(to_cgal(mesh))) {}
+MeshLocator::~MeshLocator() = default;
+
+bool MeshLocator::inside(const Vec3& x) const {
+  return (*impl_->side)(Point(x.x(), x.y(), x.z())) != CGAL::ON_UNBOUNDED_SIDE;
+}
+double MeshLocator::distance(const Vec3& x) const {
+  return std::sqrt(impl_->tree.squared_distance(Point(x.x(), x.y(), x.z())));
+}
+double MeshLocator::volume() const { return PMP::volume(impl_->mesh); }
+double MeshLocator::area() const { return PMP::area(impl_->mesh); }
+
+TriangleMesh read_mesh(const std::string& path, const SourceRef& where) {
+  const auto fail = [&](const std::string& msg) -> TriangleMesh {
+    throw InputError(where.file, where.line, "mesh " + path + ": " + msg);
+  };
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext != ".off" && ext != ".obj" && ext != ".stl") return fail("expected a .off, .obj or .stl file");
+  if (!std::filesystem::is_regular_file(path)) return fail("cannot open the file");
+  std::vector<Point> points;
+  Polygons polygons;
+  if (!CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false)) ||
+      polygons.empty())
+    return fail("cannot read it as " + ext.substr(1) + " (or it has no faces)");
+  for (const auto& p : polygons)
+    if (p.size() < 3) return fail("a face has fewer than 3 vertices");
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return fail(why_not_manifold(polygons));
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+  if (!CGAL::is_triangle_mesh(mesh)) PMP::triangulate_faces(mesh);
+  if (!CGAL::is_closed(mesh)) return fail("not closed (it has boundary edges): it does not bound a region");
+  for (auto f : mesh.faces())
+    if (PMP::is_degenerate_triangle_face(f, mesh))
+      return fail("face " + std::to_string(std::size_t(f)) + " is degenerate (zero area)");
+  std::vector<std::pair<Mesh::Face_index, Mesh::Face_index>> crossing;
+  PMP::self_intersections(mesh, std::back_inserter(crossing));
+  if (!crossing.empty())
+    return fail("self-intersecting: faces " + std::to_string(std::size_t(crossing[0].first)) + " and " +
+                std::to_string(std::size_t(crossing[0].second)) + " intersect (" +
+                std::to_string(crossing.size()) + " pairs)");
+  if (!PMP::is_outward_oriented(mesh))
+    return fail("inward oriented: list each face counter-clockwise seen from outside");
+  // is_outward_oriented looks at the outermost component only; a cavity must face inward.
+  if (!PMP::does_bound_a_volume(mesh))
+    return fail("a nested component is oriented like its enclosing one (a cavity's faces must point into the cavity)");
+  TriangleMesh out = from_cgal(mesh);
+  out.file = path;
+  out.locator = std::make_shared<const MeshLocator>(out);
+  return out;
+}
+
+}  // namespace billiards::geometry3
