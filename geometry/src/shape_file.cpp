@@ -9,9 +9,7 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 
 namespace billiards::geometry {
 
@@ -232,38 +230,17 @@ class LoopReader {
   const Reader& r_;
 };
 
-std::string leading_comment(const std::string& text) {
-  std::istringstream in(text);
-  std::string line, out;
-  while (std::getline(in, line) && !line.empty() && line[0] == '#') {
-    const auto body = line.find_first_not_of("# ");
-    out += (out.empty() ? "" : "\n") + (body == std::string::npos ? "" : line.substr(body));
-  }
-  return out;
-}
-
 }  // namespace
 
 Shape parse_shape(const std::string& yaml_text, const std::string& name, const Overrides& overrides) {
-  YAML::Node doc;
-  try {
-    doc = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(name, e.mark.line + 1, "not valid YAML: " + e.msg);
-  }
+  const YAML::Node doc = load_yaml(yaml_text, name);
   Expressions expr;
   Reader r(name, expr);
   if (!doc.IsMap()) throw InputError(name, 1, "a shape file is a YAML mapping");
   r.expect_keys(doc, {"name", "dimension", "parameters", "boundary", "holes"}, "a shape file");
   if (doc["dimension"] && doc["dimension"].as<std::string>() != "2")
     r.fail(doc["dimension"], "only dimension 2 is supported so far");
-  if (const YAML::Node params = doc["parameters"]) {
-    if (!params.IsMap()) r.fail(params, "'parameters' must be a mapping NAME: value");
-    for (const auto& kv : params) {
-      if (!kv.second.IsScalar()) r.fail(kv.second, "a parameter value must be a number or expression");
-      expr.define(kv.first.as<std::string>(), kv.second.Scalar(), name, r.line(kv.first), overrides);
-    }
-  }
+  if (const YAML::Node params = doc["parameters"]) r.define_parameters(params, overrides);
   if (const auto unknown = expr.unused(overrides); !unknown.empty())
     throw InputError(name, 0, "--set names '" + unknown.front() + "', which is not a parameter of this shape");
 
@@ -285,11 +262,7 @@ Shape parse_shape(const std::string& yaml_text, const std::string& name, const O
 }
 
 Shape load_shape(const std::string& path, const Overrides& overrides) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "cannot open shape file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_shape(text.str(), path, overrides);
+  return parse_shape(read_input_file(path, "shape file"), path, overrides);
 }
 
 }  // namespace billiards::geometry

@@ -6,8 +6,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace billiards::geometry3 {
 
@@ -101,32 +99,6 @@ void validate_holes(const Region3& region) {
   }
 }
 
-std::string leading_comment(const std::string& text) {
-  std::istringstream in(text);
-  std::string line, out;
-  while (std::getline(in, line) && !line.empty() && line[0] == '#') {
-    const auto body = line.find_first_not_of("# ");
-    out += (out.empty() ? "" : "\n") + (body == std::string::npos ? "" : line.substr(body));
-  }
-  return out;
-}
-
-YAML::Node load_yaml(const std::string& text, const std::string& name) {
-  try {
-    return YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(name, e.mark.line + 1, "not valid YAML: " + e.msg);
-  }
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, 0, "cannot open shape file");
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const Overrides& overrides) {
@@ -137,13 +109,7 @@ Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const
   r.expect_keys(doc, {"name", "dimension", "parameters", "boundary", "holes"}, "a 3-D shape file");
   const YAML::Node dim = r.required(doc, "dimension", "a 3-D shape file");
   if (!dim.IsScalar() || dim.Scalar() != "3") r.fail(dim, "a 3-D shape file has 'dimension: 3'");
-  if (const YAML::Node params = doc["parameters"]) {
-    if (!params.IsMap()) r.fail(params, "'parameters' must be a mapping NAME: value");
-    for (const auto& kv : params) {
-      if (!kv.second.IsScalar()) r.fail(kv.second, "a parameter value must be a number or expression");
-      expr.define(kv.first.as<std::string>(), kv.second.Scalar(), name, r.line(kv.first), overrides);
-    }
-  }
+  if (const YAML::Node params = doc["parameters"]) r.define_parameters(params, overrides);
   if (const auto unknown = expr.unused(overrides); !unknown.empty())
     throw InputError(name, 0, "--set names '" + unknown.front() + "', which is not a parameter of this shape");
 
@@ -167,11 +133,11 @@ Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const
 }
 
 Shape3 load_shape3(const std::string& path, const Overrides& overrides) {
-  return parse_shape3(read_text(path), path, overrides);
+  return parse_shape3(read_input_file(path, "shape file"), path, overrides);
 }
 
 int shape_dimension(const std::string& path) {
-  const YAML::Node doc = load_yaml(read_text(path), path);
+  const YAML::Node doc = load_yaml(read_input_file(path, "shape file"), path);
   if (!doc.IsMap() || !doc["dimension"]) return 2;
   const YAML::Node d = doc["dimension"];
   if (d.IsScalar() && (d.Scalar() == "2" || d.Scalar() == "3")) return std::stoi(d.Scalar());

@@ -58,6 +58,15 @@ class YamlReader {
     if (!(v >= 1) || v != std::floor(v) || v > 1e12) fail(n, what + " must be a whole number ≥ 1");
     return std::size_t(v);
   }
+  /// Defines each parameter of a `parameters:` mapping, in order (later ones may use earlier
+  /// ones); an override of the same name replaces its value.
+  void define_parameters(const YAML::Node& params, const Overrides& overrides) const {
+    if (!params.IsMap()) fail(params, "'parameters' must be a mapping NAME: value");
+    for (const auto& kv : params) {
+      if (!kv.second.IsScalar()) fail(kv.second, "a parameter value must be a number or expression");
+      expr_.define(kv.first.as<std::string>(), kv.second.Scalar(), file_, line(kv.first), overrides);
+    }
+  }
   geometry::Vec2 point(const YAML::Node& n) const {
     if (!n.IsSequence() || n.size() != 2) fail(n, "expected a vector [x, y]");
     return {number(n[0]), number(n[1])};
@@ -67,5 +76,12 @@ class YamlReader {
   std::string file_;
   Expressions& expr_;
 };
+
+/// The whole text of an input file; `what` names it in the error ("shape file").
+std::string read_input_file(const std::string& path, const std::string& what);
+/// Parses YAML text, reporting a syntax error at its line in `name`.
+YAML::Node load_yaml(const std::string& text, const std::string& name);
+/// The comment lines at the top of a file, without their '#': what the file describes.
+std::string leading_comment(const std::string& text);
 
 }  // namespace billiards
