@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
 
 namespace billiards::dynamics3 {
 
@@ -164,6 +165,25 @@ Hit3 Table3::collision(const State3& s, double t_end) const {
   return best;
 }
 
+Hit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end) const {
+  if (!triangles_.empty())
+    throw std::invalid_argument("driven flights in 3-D are implemented against planes and spheres, not meshes");
+  Hit3 best;
+  best.t = t_end;
+  for (int w = 0; w < int(planes_.size()); ++w) {
+    const double t = flight.exit_time(s, planes_[w], best.t);
+    if (t < best.t) best.t = t, best.wall = w;
+  }
+  for (int w = 0; w < int(spheres_.size()); ++w) {
+    const double t = flight.exit_time(s, spheres_[w], best.t);
+    if (t < best.t) best.t = t, best.wall = int(planes_.size()) + w;
+  }
+  if (!best.found()) return best;
+  best.point = flight.advance(s, best.t).x;
+  best.normal = normal_at(best.wall, best.point);
+  return best;
+}
+
 Vec3 Table3::normal_at(int wall, const Vec3& x) const {
   const int np = int(planes_.size()), nt = int(triangles_.size());
   if (wall < np) return planes_[wall].normal;
@@ -176,6 +196,12 @@ void bounce(State3& s, const Hit3& hit, double v2) {
   s.t = hit.t;
   s.v -= 2 * s.v.dot(hit.normal) * hit.normal;
   s.v *= std::sqrt(v2 / s.v.squaredNorm());
+}
+
+void bounce(const PeriodicDriveFlight3& flight, DrivenState3& s, const Hit3& hit) {
+  s = flight.advance(s, hit.t);
+  s.x = hit.point;
+  s.v -= 2 * s.v.dot(hit.normal) * hit.normal;
 }
 
 State3 sample_microcanonical(const Table3& table, double speed, dynamics::ParticleRng& rng) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "billiards/dynamics/random.hpp"
+#include "billiards/dynamics3/driven3.hpp"
 #include "billiards/dynamics3/walls3.hpp"
 #include "billiards/geometry3/region3.hpp"
 
@@ -47,6 +48,9 @@ class Table3 {
   /// The first wall the straight flight from `s` leaves the region through, before `t_end`.
   /// For a particle inside the region and t_end = never, found() == false means an escape.
   Hit3 collision(const State3& s, double t_end = never) const;
+  /// The same for the paper's drive (planes and spheres; throws std::invalid_argument for a
+  /// table with a mesh: driven flights against triangles are not implemented yet).
+  Hit3 collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end = never) const;
   const geometry3::Region3& region() const { return region_; }
   std::size_t wall_count() const { return planes_.size() + triangles_.size() + spheres_.size(); }
   const Vec3& lo() const { return lo_; }  // bounding box
@@ -67,6 +71,9 @@ class Table3 {
 /// Specular reflection at the hit, restoring the speed² `v2` of the particle's start (so that
 /// rounding cannot accumulate into an energy drift).
 void bounce(State3& s, const Hit3& hit, double v2);
+
+/// Moves the driven particle to the hit and reflects it there (its energy changes in flight).
+void bounce(const PeriodicDriveFlight3& flight, DrivenState3& s, const Hit3& hit);
 
 /// Position uniform in the region (rejection from the bounding box), velocity isotropic.
 State3 sample_microcanonical(const Table3& table, double speed, dynamics::ParticleRng& rng);

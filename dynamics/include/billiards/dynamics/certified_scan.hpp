@@ -1,0 +1,198 @@
+// The certified root scan behind the forced flights, in 2-D and 3-D (internal to dynamics).
+//
+// For one wall, f(τ) measures how far beyond the wall the particle is τ after the flight's
+// start.  The scan steps from sample to sample by the earliest time at which f could vanish
+// given a bound M on |f''| (the positive root of |f| − σ f' s − M s²/2, σ = sign f), or by
+// a longer step when the guiding line of the flight shows that the wall cannot be reached
+// sooner (`earliest`), so it never steps over a root; near a simple root it converges like
+// Newton's iteration from the safe side.
+#pragma once
+
+#include "billiards/dynamics/flight.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+
+namespace billiards::dynamics::scan {
+
+template <class Real>
+inline const Real eps = std::numeric_limits<Real>::epsilon();
+
+/// f and f' at one time of the scan, with what bounds f'' until the next sample.
+template <class Real, class V = Vec2T<Real>>
+struct Sample {
+  Real f, df;  // how far beyond the wall, and its rate
+  Real M;      // bound on |f''| over the next `cap` time units
+  Real cap;    // longest step for which M holds
+  V x;         // position
+};
+
+/// First τ in [0, tau_end] at which f crosses zero upward at a point in the wall's span.
+/// `sample(τ)` evaluates f; `earliest(τ, f)` returns a time before which f cannot vanish
+/// (from the guiding line and the bounded oscillation), or +∞; `tolerance(τ)` is the rounding
+/// level of f at τ.
+template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolFn>
+Real first_outward_crossing(SampleFn sample, EarliestFn earliest, SpanFn in_span, TolFn tolerance,
+                            const Real& tau_end) {
+  using std::abs;
+  using std::max;
+  using std::min;
+  using std::sqrt;
+  constexpr int max_steps = 1000000;
+  Real tau = 0;
+  for (int step = 0; step < max_steps; ++step) {
+    if (tau > tau_end || tau == never) return never;  // (τ = ∞: no window ahead, with no horizon)
+    const auto p = sample(tau);
+    const Real tol = tolerance(tau);
+    Real s;
+    if (abs(p.f) <= tol) {
+      // At the wall to rounding: an outward crossing in the span is the collision.  A touch,
+      // an inward crossing or a crossing outside the span is passed by the time f needs to
+      // change by tol (a skipped crossing would be no deeper than rounding: a graze).
+      // One Newton step polishes the root from |f| ≤ tol (rounding of the walls, ~1e-13) to
+      // the rounding of f itself, so the collision time does not depend on where the scan
+      // happened to enter the tolerance band; the step stays inside that band.
+      if (p.df > 0 && in_span(p.x))
+        return max(Real(0), Real(tau - std::clamp(Real(p.f / p.df), Real(-tol / p.df), Real(tol / p.df))));
+      s = 2 * tol / (abs(p.df) + sqrt(2 * p.M * tol));
+    } else {
+      // Earliest zero allowed by |f''| ≤ M: the positive root of |f| − σ f' s − M s²/2.
+      const Real a = abs(p.f), slope = p.f < 0 ? p.df : Real(-p.df);
+      const Real quadratic = p.M > 0 ? Real(2 * a / (slope + sqrt(slope * slope + 2 * p.M * a)))
+                                     : (slope > 0 ? Real(a / slope) : Real(never));
+      s = max(min(quadratic, p.cap), Real(earliest(tau, p.f) - tau));
+    }
+    // Keep a floor so that τ advances in floating point; it is far below any physical time.
+    tau += max(s, Real(4 * eps<Real> * max(tau, Real(1e-300))));
+  }
+  throw std::runtime_error("certified root isolation did not converge in a million steps");
+}
+
+/// Time, from τ0, at which the linear function ℓ(τ) = l0 + l1 (τ − τ0) first reaches level L
+/// from below (ℓ(τ0) < L), or +∞.
+template <class Real>
+Real reach_linear(const Real& tau0, const Real& l0, const Real& l1, const Real& level) {
+  if (l0 >= level) return tau0;
+  return l1 > 0 ? Real(tau0 + (level - l0) / l1) : Real(never);
+}
+
+/// First τ ≥ τ0 at which |q0 + u (τ − τ0)|² crosses ρ², going outward (from inside) when
+/// `outward`, inward otherwise; τ0 itself when already on that side, +∞ when never.
+template <class Real, class V>
+Real reach_radius(const Real& tau0, const V& q0, const V& u, const Real& rho, bool outward) {
+  using std::sqrt;
+  const Real a = u.squaredNorm(), b = q0.dot(u), c = q0.squaredNorm() - rho * rho;
+  if (outward ? c >= 0 : c <= 0) return tau0;
+  if (a == 0) return never;
+  const Real D = b * b - a * c;
+  if (D < 0) return never;  // the guiding line misses the circle of radius ρ
+  const Real root = sqrt(D);
+  if (outward) return tau0 + (b <= 0 ? Real((root - b) / a) : Real(-c / (b + root)));  // larger root
+  if (b >= 0) return never;                                                            // moving away
+  return tau0 + c / (root - b);                                                        // smaller root
+}
+
+/// A periodically driven flight from state s as a guiding line plus an oscillation of
+/// amplitude |F|/(mω²): x(τ) = g0 + u τ − (F/mω²) cos θ(τ), τ after the start.  `Flight` has
+/// `accel` (F/m, a 2-D or 3-D vector), `omega` and `Scalar`; `State` has x, v, phase and its
+/// sine and cosine.
+template <class Flight, class State>
+struct Quiver {
+  using Real = typename Flight::Scalar;
+  using V = std::decay_t<decltype(std::declval<Flight>().accel)>;
+  const Flight& flight;
+  const State& s;
+  V u, g0;
+  Real speed_bound;  // bound on |v| at any time of this flight
+  Real delta;        // |F|/(mω²) ≥ |oscillation|
+
+  Quiver(const Flight& f, const State& st) : flight(f), s(st) {
+    const V amp_x = f.accel / (f.omega * f.omega);
+    u = st.v - f.accel / f.omega * st.sin_phase;
+    g0 = st.x + amp_x * st.cos_phase;
+    speed_bound = u.norm() + f.accel.norm() / f.omega;
+    delta = f.accel.norm() / (f.omega * f.omega);
+  }
+  V guide(const Real& tau) const { return g0 + u * tau; }
+  /// Position and velocity τ after the start (the closed form of advance()).  Within one
+  /// flight ωτ stays moderate, so a phase in Real is accurate to ~1e-12 rad in double, which
+  /// moves the particle by 1e-12 |F|/(mω²): no extended-precision reduction is needed here.
+  std::pair<V, V> at(const Real& tau) const {
+    using std::cos;
+    using std::sin;
+    if (tau == 0) return {s.x, s.v};
+    const Real omega = flight.omega, th = Real(s.phase) + omega * tau;
+    return {g0 + u * tau - flight.accel / (omega * omega) * Real(cos(th)), u + flight.accel / omega * Real(sin(th))};
+  }
+};
+
+/// First τ ≤ tau_end at which the driven flight `q` crosses the line (2-D) or plane (3-D)
+/// through `a` with outward unit normal `n` outward, at a point where `in_span`; +∞ if none.
+/// f = n·(x − a) lies within B = |n·F|/(mω²) of its guiding part g_off + nu τ, which must
+/// first come within B (and rounding) of zero.  While it is that close — the window, widened
+/// to twice the margin so that the scan leaves it for good — `passes(τ, end)` may declare that
+/// no point of the window can be a collision (the wall's span is out of reach), and the whole
+/// window is passed.
+template <class Q, class V, class Real, class Passes, class InSpan>
+Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& slack, const Real& tau_end,
+                               Passes passes, InSpan in_span) {
+  using std::abs;
+  const Real n_a = abs(n.dot(q.flight.accel));
+  const Real B = n_a / (q.flight.omega * q.flight.omega);
+  const Real nu = n.dot(q.u), g_off = n.dot(q.g0 - a);
+  auto tolerance = [&](const Real& tau) { return Real(slack + 8 * eps<Real> * (abs(g_off) + abs(nu) * tau + B)); };
+  auto sample = [&](const Real& tau) {
+    const auto [x, v] = q.at(tau);
+    return Sample<Real, V>{n.dot(x - a), n.dot(v), n_a, never, x};
+  };
+  auto earliest = [&](const Real& tau, const Real& f) {
+    using std::min;
+    const Real margin = B + tolerance(tau), guide = g_off + nu * tau;
+    const Real start = f < 0 ? reach_linear(tau, guide, nu, Real(-margin))
+                             : reach_linear(tau, Real(-guide), Real(-nu), Real(-margin));
+    if (start > tau || nu == 0) return start;
+    const Real end = min(Real(tau + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
+    return end > tau && passes(tau, end) ? end : tau;
+  };
+  return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
+}
+
+/// The same through the circle (2-D) or sphere (3-D) of centre c and radius r, the region
+/// inside it when `focusing`: f = ±(|x − c| − r), |x − c| within δ of the guiding line's
+/// distance to c.
+template <class Q, class V, class Real, class Passes, class InSpan>
+Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focusing, const Real& slack,
+                                const Real& tau_end, Passes passes, InSpan in_span) {
+  using std::max;
+  const Real sign = focusing ? 1 : -1;
+  const Real Vb = q.speed_bound, A = q.flight.accel.norm(), delta = q.delta;
+  const Real scale = (q.s.x - c).norm() + r;
+  auto tolerance = [&](const Real& tau) { return Real(slack + 8 * eps<Real> * (scale + Vb * tau + delta)); };
+  auto sample = [&](const Real& tau) {
+    const auto [x, v] = q.at(tau);
+    const V p = x - c;
+    const Real rho = p.norm();
+    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
+    const Real M = 2 * Vb * Vb / max(rho, Real(1e-300)) + A;
+    return Sample<Real, V>{sign * (rho - r), sign * p.dot(v) / rho, M, rho / (2 * Vb), x};
+  };
+  auto earliest = [&](const Real& tau, const Real& f) {
+    using std::min;
+    const V g = q.g0 + q.u * tau - c;
+    const Real margin = delta + tolerance(tau);
+    const bool inside = (f < 0) == focusing;  // inside the circle, to rounding
+    const Real start = inside ? reach_radius(tau, g, q.u, max(Real(0), Real(r - margin)), true)
+                              : reach_radius(tau, g, q.u, Real(r + margin), false);
+    if (start > tau) return start;
+    const Real end = min({reach_radius(tau, g, q.u, Real(r + 2 * margin), true),
+                          reach_radius(tau, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
+    return end > tau && passes(tau, end) ? end : tau;
+  };
+  return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
+}
+
+}  // namespace billiards::dynamics::scan

@@ -1,0 +1,34 @@
+// The paper's uniform periodic drive F cos(ω t + φ) in 3-D (Appendix B holds in any d), with
+// the certified exit times of the 2-D flights (certified_scan.hpp) against planes and spheres.
+// Meshes are not supported under a drive yet (Table3::collision says so).
+#pragma once
+
+#include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics3/walls3.hpp"
+
+namespace billiards::dynamics3 {
+
+/// State under the drive: the drive's phase, reduced to [0, 2π) in long double, with its sine
+/// and cosine (as in 2-D, dynamics::BasicDrivenState).
+struct DrivenState3 : State3 {
+  long double phase = 0;
+  double sin_phase = 0, cos_phase = 1;
+  void set_phase(long double theta);
+};
+
+struct PeriodicDriveFlight3 {
+  using Scalar = double;
+  using State = DrivenState3;
+  Vec3 accel;         // F / m
+  double omega;       // ω
+  double phase0 = 0;  // the drive's phase at t = 0
+
+  State start(const State3& s) const;
+  /// v(t) = v_s + (F/mω)[sin θ(t) − sin θ_s],
+  /// x(t) = x_s + [v_s − (F/mω) sin θ_s](t − t_s) − (F/mω²)[cos θ(t) − cos θ_s].
+  State advance(const State& s, double t) const;
+  double exit_time(const State& s, const PlaneWall& w, double t_end) const;
+  double exit_time(const State& s, const SphereWall& w, double t_end) const;
+};
+
+}  // namespace billiards::dynamics3

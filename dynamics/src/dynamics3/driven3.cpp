@@ -1,0 +1,52 @@
+#include "billiards/dynamics3/driven3.hpp"
+
+#include "billiards/dynamics/certified_scan.hpp"
+
+namespace billiards::dynamics3 {
+
+namespace {
+
+using Quiver3 = dynamics::scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
+const auto no_window_passed = [](double, double) { return false; };  // no spans to cull by
+const auto everywhere = [](const Vec3&) { return true; };
+
+}  // namespace
+
+void DrivenState3::set_phase(long double theta) {
+  phase = dynamics::reduce_phase(theta);
+  sin_phase = std::sin(double(phase));
+  cos_phase = std::cos(double(phase));
+}
+
+DrivenState3 PeriodicDriveFlight3::start(const State3& s) const {
+  DrivenState3 d;
+  static_cast<State3&>(d) = s;
+  d.set_phase(static_cast<long double>(omega) * s.t + phase0);
+  return d;
+}
+
+DrivenState3 PeriodicDriveFlight3::advance(const State& s, double t) const {
+  const double tau = t - s.t;
+  State r = s;
+  r.set_phase(s.phase + static_cast<long double>(omega) * tau);
+  const Vec3 amp_v = accel / omega, amp_x = accel / (omega * omega);
+  r.v = s.v + amp_v * (r.sin_phase - s.sin_phase);
+  r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * (r.cos_phase - s.cos_phase);
+  r.t = t;
+  return r;
+}
+
+double PeriodicDriveFlight3::exit_time(const State& s, const PlaneWall& w, double t_end) const {
+  // A face of a convex polyhedron has no span: the first plane crossed outward is the exit.
+  const double tau = dynamics::scan::driven_exit_through_plane(Quiver3(*this, s), w.normal, Vec3(w.normal * w.offset),
+                                                               w.slack, t_end - s.t, no_window_passed, everywhere);
+  return tau == never ? never : s.t + tau;
+}
+
+double PeriodicDriveFlight3::exit_time(const State& s, const SphereWall& w, double t_end) const {
+  const double tau = dynamics::scan::driven_exit_through_sphere(Quiver3(*this, s), w.center, w.radius, w.focusing,
+                                                                w.slack, t_end - s.t, no_window_passed, everywhere);
+  return tau == never ? never : s.t + tau;
+}
+
+}  // namespace billiards::dynamics3
