@@ -104,8 +104,8 @@ TEST_CASE("3-D: zero drive is the free billiard, collision for collision") {
 // With 8000 particles the standard errors are 23% (mean) and 1.6% (variance).  With 80 000
 // (measured 2026-11-23) the mean still agrees (−0.1 SE) but the variance is 2.7% above g2 dt
 // (+5 SE); the 2-D Sinai table (square and disk) shows a like excess (mean +4 SE at 10⁵
-// particles) while the clover and the stadium agree: an open question about Sinai tables,
-// not about d = 3 (see README, "3-D shapes").
+// particles) that vanishes at 2560π, while the clover and the stadium agree at 320π: a
+// finite-frequency correction of Sinai tables, not a d = 3 effect (README, "3-D shapes").
 TEST_CASE("3-D Sinai at omega = 320 pi: <dE> and Var(dE) match g1 dt and g2 dt (d = 3)") {
   const auto shape = sinai3();
   const dynamics3::Table3 table(shape.region);
