@@ -7,7 +7,9 @@
 
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/random.hpp"
+#include "billiards/dynamics3/table3.hpp"
 #include "billiards/geometry.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -68,6 +70,56 @@ std::string title_of(const geometry::Shape& shape, int collisions, std::uint64_t
   return title;
 }
 
+/// A 3-D shape as faces (polygons; a mesh's triangles, at most `max_faces` of them evenly
+/// picked so that the picture stays drawable), spheres and a free trajectory.
+nlohmann::json shape3_data(const std::string& path, const Overrides& set, int collisions, std::uint64_t seed) {
+  using namespace geometry3;
+  constexpr std::size_t max_faces = 20000;
+  const auto shape = load_shape3(path, set);
+  const auto& region = shape.region;
+  const auto point = [](const Vec3& p) { return nlohmann::json{p.x(), p.y(), p.z()}; };
+  nlohmann::json faces = nlohmann::json::array(), spheres = nlohmann::json::array();
+  const auto sphere = [&](const Ball& b, bool outer) {
+    spheres.push_back({{"center", point(b.center)}, {"radius", b.radius}, {"outer", outer}});
+  };
+  if (const auto* p = std::get_if<ConvexPolyhedron>(&region.outer)) {
+    for (const auto& face : p->faces) {
+      nlohmann::json f = nlohmann::json::array();
+      for (const auto& v : face) f.push_back(point(v));
+      faces.push_back(f);
+    }
+  } else if (const auto* m = std::get_if<TriangleMesh>(&region.outer)) {
+    const std::size_t step = (m->triangles.size() + max_faces - 1) / max_faces;
+    for (std::size_t i = 0; i < m->triangles.size(); i += step) {
+      const auto& t = m->triangles[i];
+      faces.push_back({point(m->vertices[t[0]]), point(m->vertices[t[1]]), point(m->vertices[t[2]])});
+    }
+  } else {
+    sphere(std::get<Ball>(region.outer), true);
+  }
+  for (const Ball& b : region.holes) sphere(b, false);
+
+  nlohmann::json trajectory = nlohmann::json::array();
+  if (collisions > 0) {
+    const dynamics3::Table3 table(region);
+    dynamics::ParticleRng rng(seed, 0);
+    auto s = dynamics3::sample_microcanonical(table, 1.0, rng);
+    trajectory.push_back(point(s.x));
+    for (int k = 0; k < collisions; ++k) {
+      const auto hit = table.collision(s);
+      if (!hit.found())
+        throw std::runtime_error(fmt::format("the trajectory escaped the region after {} collisions", k));
+      dynamics3::bounce(s, hit, 1.0);
+      trajectory.push_back(point(s.x));
+    }
+  }
+  const auto m = measures_of(region);
+  std::string title = fmt::format("{}:  V = {:.6g},  S = {:.6g},  mean free path = {:.6g}", region.name, m.volume,
+                                  m.surface, geometry::mean_free_path(m));
+  if (collisions > 0) title += fmt::format("\nfree trajectory: {} collisions, seed {}", collisions, seed);
+  return {{"dimension", 3}, {"title", title}, {"faces", faces}, {"spheres", spheres}, {"trajectory", trajectory}};
+}
+
 /// Removes its file when it goes out of scope, so no exit path leaves temporaries behind.
 struct TempFile {
   fs::path path;
@@ -81,7 +133,7 @@ struct TempFile {
 /// is renamed into place only on success, so `output` is either the complete picture or
 /// untouched.
 void draw(const nlohmann::json& data, const fs::path& output) {
-  const fs::path script = script_path("plot_shape.py");
+  const fs::path script = script_path(data.value("dimension", 2) == 3 ? "plot_shape3.py" : "plot_shape.py");
   const TempFile json{fs::temp_directory_path() / fmt::format("billiard-plot-{}.json", getpid())};
   std::ofstream out(json.path);
   out << data.dump();
@@ -111,6 +163,11 @@ void add_plot(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "seed of the trajectory's initial condition");
   add_set_option(cmd, args->set);
   cmd->callback([args] {
+    if (geometry3::shape_dimension(args->shape) == 3) {
+      draw(shape3_data(args->shape, parse_overrides(args->set), args->trajectory, args->seed), args->output);
+      fmt::print("wrote {}\n", args->output);
+      return;
+    }
     const auto shape = geometry::load_shape(args->shape, parse_overrides(args->set));
     nlohmann::json data;
     data["title"] = title_of(shape, args->trajectory, args->seed);

@@ -46,6 +46,25 @@ TEST_CASE("plot writes a PNG of the shape and its trajectory, and nothing on err
   CHECK_FALSE(fs::exists(dir / "bad.png"));
 }
 
+TEST_CASE("plot draws 3-D shapes: polyhedra with balls, meshes; bad files write nothing") {
+  const auto dir = scratch("plot3");
+  for (const char* shape : {"sinai3", "l-prism", "ball"}) {
+    const auto png = dir / (std::string(shape) + ".png");
+    const auto r = billiard(std::string("plot shapes/3d/") + shape + ".yaml --trajectory 40 -o " + png.string());
+    INFO(shape << ": " << r.output);
+    REQUIRE(r.status == 0);
+    const auto bytes = read_file(png);
+    REQUIRE(bytes.substr(1, 3) == "PNG");
+    CHECK(png_size(bytes).first > 500);
+  }
+  const auto bad = dir / "bad.yaml";
+  write_file(bad, "dimension: 3\nboundary:\n  sphere: {center: [0, 0, 0], radius: -1}\n");
+  const auto r = billiard("plot " + bad.string() + " -o " + (dir / "bad.png").string());
+  CHECK(r.status != 0);
+  CHECK_THAT(r.output, Catch::Contains("bad.yaml:3"));
+  CHECK_FALSE(fs::exists(dir / "bad.png"));
+}
+
 TEST_CASE("plot: a failing drawing leaves no PNG, a missing python is named") {
   const auto dir = scratch("plot-failures");
   // A stand-in for plot_shape.py that writes part of its output, then fails.
