@@ -61,8 +61,13 @@ Real first_outward_crossing(SampleFn sample, EarliestFn earliest, SpanFn in_span
       s = 2 * tol / (abs(p.df) + sqrt(2 * p.M * tol));
     } else {
       // Earliest zero allowed by |f''| ≤ M: the positive root of |f| − σ f' s − M s²/2.
+      // Each form is free of cancellation on its side: moving away from the wall (slope < 0)
+      // the first would divide by a difference of nearly equal numbers and could step past
+      // the root (a ball thrown off a floor and pulled back by the force).  (Found and fixed
+      // by the hard-cases suite.)
       const Real a = abs(p.f), slope = p.f < 0 ? p.df : Real(-p.df);
-      const Real quadratic = p.M > 0 ? Real(2 * a / (slope + sqrt(slope * slope + 2 * p.M * a)))
+      const Real root = sqrt(slope * slope + 2 * p.M * a);
+      const Real quadratic = p.M > 0 ? (slope >= 0 ? Real(2 * a / (slope + root)) : Real((root - slope) / p.M))
                                      : (slope > 0 ? Real(a / slope) : Real(never));
       s = max(min(quadratic, p.cap), Real(earliest(tau, p.f) - tau));
     }
