@@ -34,11 +34,11 @@ struct Sample {
 /// First τ in [0, tau_end] at which f crosses zero upward at a point in the wall's span.
 /// `sample(τ)` evaluates f; `earliest(τ, f)` returns a time before which f cannot vanish
 /// (from the guiding line and the bounded oscillation), or +∞; `tolerance(τ)` is the rounding
-/// level of f at τ.
+/// level of f at τ.  Inlined into each caller so that its lambdas fold into one loop
+/// (measured with callgrind: 12% fewer instructions than a call).
 template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolFn>
-// Inlined into each caller so that its lambdas fold into one loop (measured: 12% fewer instructions).
-[[gnu::always_inline]] inline Real first_outward_crossing(SampleFn sample, EarliestFn earliest, SpanFn in_span, TolFn tolerance,
-                            const Real& tau_end) {
+[[gnu::always_inline]] inline Real first_outward_crossing(SampleFn sample, EarliestFn earliest, SpanFn in_span,
+                                                          TolFn tolerance, const Real& tau_end) {
   using std::abs;
   using std::max;
   using std::min;
