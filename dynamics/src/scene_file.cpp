@@ -40,11 +40,16 @@ Force read_force(const SceneReader& r, const YAML::Node& n) {
     return f;
   }
   const YAML::Node p = n["periodic"];
-  r.expect_keys(p, {"amplitude", "omega", "phase"}, "a periodic force");
+  r.expect_keys(p, {"amplitude", "omega", "phase", "picture"}, "a periodic force");
   f.kind = Force::Kind::periodic;
   f.amplitude = r.point(r.required(p, "amplitude", "a periodic force"));
   f.omega = r.positive(r.required(p, "omega", "a periodic force"), "omega");
   f.phase = p["phase"] ? r.number(p["phase"]) : 0.0;
+  if (const YAML::Node picture = p["picture"]) {
+    if (!picture.IsScalar() || (picture.Scalar() != "lab" && picture.Scalar() != "quivering-walls"))
+      r.fail(picture, "'picture' is one of: lab, quivering-walls");
+    f.quivering_walls = picture.Scalar() == "quivering-walls";
+  }
   return f;
 }
 

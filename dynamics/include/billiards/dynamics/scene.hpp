@@ -21,6 +21,9 @@ struct Force {
   Vec2 amplitude = Vec2::Zero();  // F
   double omega = 0;               // ω (periodic only)
   double phase = 0;               // (periodic only)
+  /// periodic only: simulate the equivalent free particle between walls translating by
+  /// F cos(ω t + phase)/(mω²) (`picture: quivering-walls`; QuiveringWallFlight).
+  bool quivering_walls = false;
   const char* name() const;
 };
 
