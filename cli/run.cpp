@@ -236,6 +236,8 @@ auto with_flight(const Scene& scene, Run&& run) {
   switch (scene.force.kind) {
     case dynamics::Force::Kind::constant: return run(dynamics::ConstantForceFlight{accel});
     case dynamics::Force::Kind::periodic:
+      if (scene.force.quivering_walls)
+        return run(dynamics::QuiveringWallFlight{accel, scene.force.omega, scene.force.phase});
       return run(dynamics::PeriodicDriveFlight{accel, scene.force.omega, scene.force.phase});
     case dynamics::Force::Kind::none: break;
   }

@@ -5,6 +5,7 @@
 
 #include <Eigen/SparseLU>
 
+#include <algorithm>
 #include <cmath>
 
 namespace billiards::analysis {
@@ -101,8 +102,14 @@ std::vector<double> evolve_fokker_planck(const EnergyGrid& grid, std::vector<dou
     const double e = grid.edges[i + 1], h = grid.center(i + 1) - grid.center(i);
     const double dg2 = (g2(e + 1e-6 * e) - g2(e - 1e-6 * e)) / (2e-6 * e);
     const double A = g1(e) - 0.5 * dg2, D = 0.5 * g2(e);
-    const double w = A * h / D;
-    const double left = D / h * bernoulli(-w), right = D / h * bernoulli(w);  // J = left η_i − right η_{i+1}
+    // J = left η_i − right η_{i+1}.  Where g2 = 0 (an energy at which no particle reaches the
+    // wall, under a potential) the flux is pure upwind advection, the limit D → 0.
+    double left = std::max(A, 0.0), right = std::max(-A, 0.0);
+    if (D > 0) {
+      const double w = A * h / D;
+      left = D / h * bernoulli(-w);
+      right = D / h * bernoulli(w);
+    }
     // Δ_i dη_i/dt = J_{i−1/2} − J_{i+1/2}
     entries.emplace_back(i, i, -left / grid.width(i));
     entries.emplace_back(i, i + 1, right / grid.width(i));

@@ -70,26 +70,73 @@ auto BasicPeriodicDriveFlight<Real>::advance(const State& s, const Real& t) cons
   return r;
 }
 
-template <class Real>
-Real BasicPeriodicDriveFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w,
-                                               const Real& t_end) const {
-  const Quiver<Real> q(*this, s);
+namespace {
+
+/// Exit time through one wall of a flight described by the Quiver q (lab or quivering walls).
+template <class Real, class Q>
+Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t0, const Real& t_end) {
   // A crossing counts only if the particle, within δ of the guiding point, can be in the
   // segment's span.
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
-  const Real tau = scan::driven_exit_through_plane(q, w.normal, w.a, w.slack, Real(t_end - s.t), passes, in_span);
-  return tau == never ? Real(never) : Real(s.t + tau);
+  const Real tau = scan::driven_exit_through_plane(q, w.normal, w.a, w.slack, Real(t_end - t0), passes, in_span);
+  return tau == never ? Real(never) : Real(t0 + tau);
+}
+
+template <class Real, class Q>
+Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, const Real& t_end) {
+  auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
+  auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
+  const Real tau = scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - t0),
+                                                    passes, in_span);
+  return tau == never ? Real(never) : Real(t0 + tau);
+}
+
+}  // namespace
+
+template <class Real>
+Real BasicPeriodicDriveFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w,
+                                               const Real& t_end) const {
+  return driven_exit_time(Quiver<Real>(*this, s), w, s.t, t_end);
 }
 
 template <class Real>
 Real BasicPeriodicDriveFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
-  const Quiver<Real> q(*this, s);
-  auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
-  auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
-  const Real tau = scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - s.t),
-                                                    passes, in_span);
-  return tau == never ? Real(never) : Real(s.t + tau);
+  return driven_exit_time(Quiver<Real>(*this, s), w, s.t, t_end);
+}
+
+// ---- Quivering walls ---------------------------------------------------------------------
+
+template <class Real>
+auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t) const -> State {
+  using P = PhaseOf<Real>;
+  const Real tau = t - s.t;
+  State r = s;
+  r.set_phase(s.phase + P(omega) * P(tau));
+  r.x = s.x + s.v * tau - accel / (omega * omega) * Real(r.cos_phase - s.cos_phase);
+  r.t = t;
+  return r;
+}
+
+namespace {
+/// The quivering-wall state as the certified scan sees it: guiding velocity ẏ, velocity
+/// relative to the walls ẏ − ḋ.
+template <class Real>
+scan::Quiver<BasicQuiveringWallFlight<Real>, BasicDrivenState<Real>> quiver_of(
+    const BasicQuiveringWallFlight<Real>& f, const BasicDrivenState<Real>& s) {
+  return {f, s, s.v, s.v - f.wall_velocity(s)};
+}
+}  // namespace
+
+template <class Real>
+Real BasicQuiveringWallFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w,
+                                               const Real& t_end) const {
+  return driven_exit_time(quiver_of(*this, s), w, s.t, t_end);
+}
+
+template <class Real>
+Real BasicQuiveringWallFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
+  return driven_exit_time(quiver_of(*this, s), w, s.t, t_end);
 }
 
 // ---- Static force ----------------------------------------------------------------------
@@ -160,6 +207,8 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicArcWal
 template struct BasicPeriodicDriveFlight<double>;
 template struct BasicPeriodicDriveFlight<long double>;
 template struct BasicPeriodicDriveFlight<Reference>;
+template struct BasicQuiveringWallFlight<double>;
+template struct BasicQuiveringWallFlight<long double>;
 template struct BasicConstantForceFlight<double>;
 template struct BasicConstantForceFlight<long double>;
 template struct BasicConstantForceFlight<Reference>;

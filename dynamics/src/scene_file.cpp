@@ -18,7 +18,7 @@ const char* Force::name() const {
   switch (kind) {
     case Kind::none: return "none";
     case Kind::constant: return "constant";
-    case Kind::periodic: return "periodic";
+    case Kind::periodic: return quivering_walls ? "periodic (quivering walls)" : "periodic";
   }
   return "?";
 }
@@ -43,11 +43,17 @@ Force read_force(const SceneReader& r, const YAML::Node& n, int dimension) {
     return f;
   }
   const YAML::Node p = n["periodic"];
-  r.expect_keys(p, {"amplitude", "omega", "phase"}, "a periodic force");
+  r.expect_keys(p, {"amplitude", "omega", "phase", "picture"}, "a periodic force");
   f.kind = Force::Kind::periodic;
   f.amplitude = r.vector(r.required(p, "amplitude", "a periodic force"), dimension);
   f.omega = r.positive(r.required(p, "omega", "a periodic force"), "omega");
   f.phase = p["phase"] ? r.number(p["phase"]) : 0.0;
+  if (const YAML::Node picture = p["picture"]) {
+    if (!picture.IsScalar() || (picture.Scalar() != "lab" && picture.Scalar() != "quivering-walls"))
+      r.fail(picture, "'picture' is one of: lab, quivering-walls");
+    f.quivering_walls = picture.Scalar() == "quivering-walls";
+    if (f.quivering_walls && dimension == 3) r.fail(picture, "the quivering-walls picture is not implemented in 3-D");
+  }
   return f;
 }
 

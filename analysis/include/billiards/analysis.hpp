@@ -4,6 +4,7 @@
 
 #include "billiards/analysis/coefficients.hpp"
 #include "billiards/analysis/fokker_planck.hpp"
+#include "billiards/analysis/potential.hpp"
 #include "billiards/analysis/quadrature.hpp"
 #include "billiards/analysis/statistics.hpp"
 #include "billiards/analysis/wall.hpp"

@@ -105,7 +105,9 @@ Real reach_radius(const Real& tau0, const V& q0, const V& u, const Real& rho, bo
 /// A periodically driven flight from state s as a guiding line plus an oscillation of
 /// amplitude |F|/(mω²): x(τ) = g0 + u τ − (F/mω²) cos θ(τ), τ after the start.  `Flight` has
 /// `accel` (F/m, a 2-D or 3-D vector), `omega` and `Scalar`; `State` has x, v, phase and its
-/// sine and cosine.
+/// sine and cosine.  The same object describes the quivering-wall picture: there g0 + u τ is
+/// the free particle and (F/mω²) cos θ the walls' displacement, and x(τ) the particle's
+/// position relative to the walls.
 template <class Flight, class State>
 struct Quiver {
   using Real = typename Flight::Scalar;
@@ -113,12 +115,17 @@ struct Quiver {
   const Flight& flight;
   const State& s;
   V u, g0;
+  V v0;              // velocity relative to the walls at τ = 0
   Real speed_bound;  // bound on |v| at any time of this flight
   Real delta;        // |F|/(mω²) ≥ |oscillation|
 
-  Quiver(const Flight& f, const State& st) : flight(f), s(st) {
+  /// The lab picture: s.v is the particle's velocity between fixed walls.
+  Quiver(const Flight& f, const State& st) : Quiver(f, st, st.v - f.accel / f.omega * st.sin_phase, st.v) {}
+  /// From the guiding velocity u (the free particle's, in the quivering-wall picture) and the
+  /// velocity relative to the walls at the start; s.x is the position relative to the walls.
+  Quiver(const Flight& f, const State& st, const V& guiding_velocity, const V& relative_velocity)
+      : flight(f), s(st), u(guiding_velocity), v0(relative_velocity) {
     const V amp_x = f.accel / (f.omega * f.omega);
-    u = st.v - f.accel / f.omega * st.sin_phase;
     g0 = st.x + amp_x * st.cos_phase;
     speed_bound = u.norm() + f.accel.norm() / f.omega;
     delta = f.accel.norm() / (f.omega * f.omega);
@@ -130,7 +137,7 @@ struct Quiver {
   std::pair<V, V> at(const Real& tau) const {
     using std::cos;
     using std::sin;
-    if (tau == 0) return {s.x, s.v};
+    if (tau == 0) return {s.x, v0};
     const Real omega = flight.omega, th = Real(s.phase) + omega * tau;
     return {g0 + u * tau - flight.accel / (omega * omega) * Real(cos(th)), u + flight.accel / omega * Real(sin(th))};
   }

@@ -72,6 +72,46 @@ struct BasicPeriodicDriveFlight {
 };
 using PeriodicDriveFlight = BasicPeriodicDriveFlight<double>;
 
+/// The same drive seen from the frame y = x + d(t), d(t) = F cos(ω t + phase)/(mω²), the
+/// paper's "quivering walls" (section 6): there ÿ = ẍ − F cos θ/m = 0, so the particle flies
+/// in straight lines and the walls translate rigidly by d(t), with velocity
+/// ḋ = −F sin θ/(mω).  A collision reverses the normal velocity relative to the wall,
+/// v' = v − 2((v − ḋ)·n)n (`bounce` below).  The state's x is the position relative to the
+/// walls (= the lab position: the transform is exact, so hits, normals and containment tests
+/// use the table as it is); its v is the free particle's velocity ẏ = ẋ + ḋ, which differs
+/// from the lab velocity by −F sin θ/(mω).  Its kinetic energy ½m|ẏ|² is this picture's
+/// energy; it equals the lab's whenever sin θ = 0.  Exit times use the lab flight's certified
+/// scan (the gap between a line and a translating wall is the same function of time).
+template <class Real>
+struct BasicQuiveringWallFlight {
+  using Scalar = Real;
+  using State = BasicDrivenState<Real>;
+  static constexpr bool conserves_energy = false;
+
+  Vec2T<Real> accel;  // F / m
+  Real omega;         // ω
+  Real phase0 = 0;    // the drive's phase at t = 0
+
+  /// s: position relative to the walls and free velocity ẏ (at phase0 = 0 and t = 0, ḋ = 0
+  /// and ẏ is the lab velocity).
+  State start(const BasicState<Real>& s) const { return BasicPeriodicDriveFlight<Real>{accel, omega, phase0}.start(s); }
+  /// y(t) = y_s + ẏ (t − t_s); x = y − d(t).
+  State advance(const State& s, const Real& t) const;
+  /// ḋ, the walls' velocity at the state's time.
+  Vec2T<Real> wall_velocity(const State& s) const { return -accel / omega * s.sin_phase; }
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
+};
+using QuiveringWallFlight = BasicQuiveringWallFlight<double>;
+
+/// Reflection off a moving wall: v' = v − 2((v − ḋ)·n)n (overloads collision.hpp's bounce).
+template <class Real>
+void bounce(const BasicQuiveringWallFlight<Real>& flight, BasicDrivenState<Real>& s, const BasicHit<Real>& hit) {
+  s = flight.advance(s, hit.t);
+  s.x = hit.point;
+  s.v -= 2 * (s.v - flight.wall_velocity(s)).dot(hit.normal) * hit.normal;
+}
+
 /// A static uniform force F on a particle of mass m: parabolic flights.
 template <class Real>
 struct BasicConstantForceFlight {

@@ -24,6 +24,9 @@ struct Force {
   Eigen::VectorXd amplitude = Eigen::VectorXd::Zero(2);  // F (the scene's dimension)
   double omega = 0;               // ω (periodic only)
   double phase = 0;               // (periodic only)
+  /// periodic only: simulate the equivalent free particle between walls translating by
+  /// F cos(ω t + phase)/(mω²) (`picture: quivering-walls`; QuiveringWallFlight).
+  bool quivering_walls = false;
   const char* name() const;
 };
 
