@@ -7,6 +7,7 @@
 
 #include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/analysis/statistics.hpp"
+#include "billiards/dynamics/field_flight.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 
 #include <fmt/core.h>
@@ -214,11 +215,17 @@ void write_energies_csv(std::ostream& out, const Scene& scene, const EnsembleRes
 /// The flight model the scene needs, chosen at compile time for the whole ensemble.
 template <class Run>
 auto with_flight(const Scene& scene, Run&& run) {
+  // Closed forms where they exist; the integrator only for a position-dependent drive or a
+  // potential.
+  if (scene.potential || scene.force.kind == dynamics::Force::Kind::field)
+    return run(dynamics::FieldFlight(scene.force, scene.potential, scene.mass, dynamics::Table(scene.shape.region),
+                                     scene.integrator_tolerance));
   const dynamics::Vec2 accel = scene.force.amplitude / scene.mass;
   switch (scene.force.kind) {
     case dynamics::Force::Kind::constant: return run(dynamics::ConstantForceFlight{accel});
     case dynamics::Force::Kind::periodic:
       return run(dynamics::PeriodicDriveFlight{accel, scene.force.omega, scene.force.phase});
+    case dynamics::Force::Kind::field:  // (handled above)
     case dynamics::Force::Kind::none: break;
   }
   return run(dynamics::FreeFlight{});

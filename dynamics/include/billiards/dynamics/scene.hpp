@@ -3,9 +3,11 @@
 #pragma once
 
 #include "billiards/dynamics/state.hpp"
+#include "billiards/geometry/coordinate_function.hpp"
 #include "billiards/geometry/expression.hpp"
 #include "billiards/geometry/shape_file.hpp"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,15 +15,23 @@
 
 namespace billiards::dynamics {
 
-/// The force between collisions: none, a static uniform force F, or the uniform periodic
-/// drive F cos(ω t + phase) of the paper.
+/// The force between collisions: none, a static uniform force F, the uniform periodic drive
+/// F cos(ω t + phase) of the paper, or a drive F(x) cos(ω t + phase) whose amplitude depends on
+/// the position (`field`).
 struct Force {
-  enum class Kind { none, constant, periodic };
+  enum class Kind { none, constant, periodic, field };
   Kind kind = Kind::none;
-  Vec2 amplitude = Vec2::Zero();  // F
-  double omega = 0;               // ω (periodic only)
-  double phase = 0;               // (periodic only)
+  Vec2 amplitude = Vec2::Zero();  // F (uniform kinds)
+  std::array<CoordinateFunction, 2> field;  // F(x) (field only)
+  double omega = 0;               // ω (periodic and field)
+  double phase = 0;               // (periodic and field)
   const char* name() const;
+};
+
+/// A potential U(x) with its gradient (given in the scene, or its exact derivatives).
+struct Potential {
+  CoordinateFunction U;
+  std::array<CoordinateFunction, 2> gradient;
 };
 
 struct Scene {
@@ -34,6 +44,9 @@ struct Scene {
   std::vector<State> initial_states;
   std::string initial_csv;
   Force force;
+  std::optional<Potential> potential;
+  /// Relative tolerance of the integrator of flights in a general field (field_flight.hpp).
+  double integrator_tolerance = 1e-10;
   std::size_t particles = 0;
   double time = 0;                   // end of the run
   std::vector<double> record_times;  // increasing, last = time
