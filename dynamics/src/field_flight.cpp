@@ -101,9 +101,14 @@ class Integrator {
       const Vec4 y1 = y_ + h * (a71 * k1_ + a73 * k3 + a74 * k4 + a75 * k5 + a76 * k6);
       const Vec4 k7 = rhs(tau_ + h, y1);
       const Vec4 err = h * (e1 * k1_ + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
+      // Error per component against tolerance × (its size + a floor: the table's size for
+      // positions, the speed for velocities), so that a component passing through zero does
+      // not force tiny steps.
+      const double speed = y_.tail<2>().norm();
       double norm = 0;
       for (int i = 0; i < 4; ++i) {
-        const double sc = m_.tolerance * (i < 2 ? m_.scale : 0.0) + m_.tolerance * std::max(std::abs(y_[i]), std::abs(y1[i]));
+        const double floor = i < 2 ? m_.scale : speed;
+        const double sc = m_.tolerance * (floor + std::max(std::abs(y_[i]), std::abs(y1[i])));
         norm += (err[i] / sc) * (err[i] / sc);
       }
       norm = std::sqrt(norm / 4);
