@@ -13,6 +13,7 @@
 #include "billiards/geometry.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 
@@ -317,4 +318,27 @@ TEST_CASE("coeffs: a uniform field given as expressions equals the closed form; 
   const auto bowl = billiard("coeffs scenes/stadium-bowl.yaml");
   CHECK(bowl.status != 0);
   CHECK(bowl.output.find("potential U(x)") != std::string::npos);
+}
+
+TEST_CASE("billiard run on field scenes: identical for 1 and 2 threads; a potential's energy is conserved") {
+  for (const std::string scene : {"stadium-bowl", "clover-field"}) {
+    const auto dir = scratch("field-run-" + scene);
+    std::string energies[2];
+    for (int threads = 1; threads <= 2; ++threads) {
+      const auto out = dir / std::to_string(threads);
+      const auto r = billiard("run scenes/" + scene + ".yaml --particles 24 --time 3 --quiet --no-csv --threads " +
+                              std::to_string(threads) + " --out " + out.string());
+      INFO(r.output);
+      REQUIRE(r.status == 0);
+      energies[threads - 1] = read_file(out / "energies.npy");
+      if (scene == "stadium-bowl") {
+        const auto summary = nlohmann::json::parse(read_file(out / "summary.json"));
+        CHECK(summary["force"] == "none");
+        CHECK(std::abs(summary["mean_dE"].get<double>()) < 1e-8);  // E = ½mv² + U, conserved
+        CHECK(summary.count("prediction") == 0);
+      }
+    }
+    CHECK(energies[0].size() >= 24 * 2 * 8);  // (two record times at least)
+    CHECK(energies[0] == energies[1]);
+  }
 }
