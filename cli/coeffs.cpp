@@ -61,7 +61,7 @@ void add_coeffs(CLI::App& app) {
                        "is not implemented yet");
     if (!c)
       throw InputError(args->scene, 0,
-                       "coeffs needs a periodic or field force and a microcanonical initial energy");
+                       "coeffs needs a periodic force (uniform or field) and a microcanonical initial energy");
     if (args->json)
       std::cout << nlohmann::json(*c).dump(2) << "\n";
     else
