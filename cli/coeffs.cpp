@@ -21,10 +21,10 @@ std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene
   }
   if (scene.force.kind != dynamics::Force::Kind::periodic) return std::nullopt;
   analysis::Drive drive;
-  drive.F = Eigen::Vector2d(scene.force.amplitude);
+  drive.F = scene.force.amplitude;
   drive.omega = scene.force.omega;
   drive.mass = scene.mass;
-  return analysis::coefficients(geometry::measures_of(scene.shape.region), drive, scene.energy);
+  return analysis::coefficients(scene.measures(), drive, scene.energy);
 }
 
 void print_prediction(const analysis::Coefficients& c, double dt) {

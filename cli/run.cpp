@@ -9,6 +9,7 @@
 #include "billiards/analysis/statistics.hpp"
 #include "billiards/dynamics/field_flight.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics3/table3.hpp"
 
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -19,6 +20,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <tuple>
 #include <type_traits>
 
 namespace billiards::cli {
@@ -86,23 +88,32 @@ nlohmann::json delta_stats(const std::vector<double>& dE) {
 }
 
 nlohmann::json fingerprint_of(const Scene& scene) {
-  return {{"scene_text", scene.text}, {"shape_parameters", scene.shape.parameters},
+  return {{"scene_text", scene.text}, {"shape_parameters", scene.shape_parameters()},
           {"particles", scene.particles}, {"record_times", scene.record_times},
           {"seed", scene.seed}, {"omega", scene.force.omega}, {"mass", scene.mass}};
 }
 
+/// Is the flight model a 3-D one?
+template <class Flight>
+constexpr bool is_3d = std::is_base_of_v<dynamics3::State3, typename Flight::State>;
+
 template <class Flight>
 EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& args, double& seconds) {
-  const dynamics::Table table(scene.shape.region);
+  // The table and the initial states of the flight's dimension; the rest is the same code.
+  const auto& [region, initial_states] = [&] {
+    if constexpr (is_3d<Flight>) return std::tie(scene.shape3.region, scene.initial_states3);
+    else return std::tie(scene.shape.region, scene.initial_states);
+  }();
+  const std::conditional_t<is_3d<Flight>, dynamics3::Table3, dynamics::Table> table(region);
   dynamics::RunOptions opt;
   opt.record_times = scene.record_times;
   opt.mass = scene.mass;
   // A forced flight costs ~10 containment tests, so every flight of a driven run is checked
   // (12% measured); free flights are 2× slower checked, so there it is --verify.
-  opt.verify_every_flight = args.verify || !std::is_same_v<Flight, dynamics::FreeFlight>;
+  opt.verify_every_flight = args.verify || !dynamics::is_straight<Flight>;
   const auto sampled = dynamics::microcanonical(table, flight, std::sqrt(2 * scene.energy / scene.mass), scene.seed);
   auto initial = [&](std::size_t i) {
-    return scene.initial_states.empty() ? sampled(i) : flight.start(scene.initial_states[i]);
+    return initial_states.empty() ? sampled(i) : flight.start(initial_states[i]);
   };
   const std::size_t n = scene.particles, m = opt.record_times.size();
   EnsembleResult result;
@@ -151,8 +162,9 @@ nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coeff
   nlohmann::json j = per_time.back();
   j.erase("t");
   j.update({{"scene", scene.file}, {"scene_text", scene.text}, {"command", command_line()},
-            {"shape", scene.shape.region.name}, {"shape_parameters", scene.shape.parameters},
-            {"force", scene.force.name()}, {"F", {scene.force.amplitude.x(), scene.force.amplitude.y()}},
+            {"dimension", scene.dimension}, {"shape", scene.shape_name()},
+            {"shape_parameters", scene.shape_parameters()}, {"force", scene.force.name()},
+            {"F", std::vector<double>(scene.force.amplitude.begin(), scene.force.amplitude.end())},
             {"omega", scene.force.omega}, {"mass", scene.mass}, {"E0", scene.energy},
             {"particles", scene.particles}, {"time", scene.time}, {"record_times", scene.record_times},
             {"seed", scene.seed}, {"threads", args.threads}, {"ranks", ranks().size()}, {"collisions", r.collisions()},
@@ -215,6 +227,12 @@ void write_energies_csv(std::ostream& out, const Scene& scene, const EnsembleRes
 /// The flight model the scene needs, chosen at compile time for the whole ensemble.
 template <class Run>
 auto with_flight(const Scene& scene, Run&& run) {
+  if (scene.dimension == 3) {  // (the scene file refuses forces that 3-D has no flight for)
+    const dynamics3::Vec3 accel = scene.force.amplitude / scene.mass;
+    if (scene.force.kind == dynamics::Force::Kind::periodic)
+      return run(dynamics3::PeriodicDriveFlight3{accel, scene.force.omega, scene.force.phase});
+    return run(dynamics3::FreeFlight3{});
+  }
   // Closed forms where they exist; the integrator only for a position-dependent drive or a
   // potential.
   if (scene.potential || scene.force.kind == dynamics::Force::Kind::field)
@@ -261,7 +279,7 @@ std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_i
   RunArgs args = args_in;
   if (args.threads <= 0) args.threads = omp_get_max_threads();
   fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
-             scene.shape.region.name, scene.force.name(), scene.time);
+             scene.shape_name(), scene.force.name(), scene.time);
   RunOutcome run{scene, prediction_of(scene), {}, {}};
   if (run.prediction) print_prediction(*run.prediction, scene.time);
   double seconds = 0;

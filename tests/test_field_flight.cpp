@@ -81,7 +81,7 @@ TEST_CASE("field expressions: values and exact derivatives against hand-derived 
   params.define("a", "3/2", "test", 1);
   const auto f = parse("sin(a*x)*exp(-y^2) + x^3*y/3 + sqrt(1 + x^2) + atan(y)", params);
   const double a = 1.5;
-  for (const Vec2 p : {Vec2(0.3, -0.4), Vec2(-1.2, 0.9), Vec2(2.0, 0.1)}) {
+  for (const Vec2& p : {Vec2(0.3, -0.4), Vec2(-1.2, 0.9), Vec2(2.0, 0.1)}) {
     const double x = p.x(), y = p.y();
     CHECK(f(p) == Approx(std::sin(a * x) * std::exp(-y * y) + x * x * x * y / 3 + std::sqrt(1 + x * x) + std::atan(y))
                       .epsilon(1e-14));
@@ -137,6 +137,12 @@ TEST_CASE("scene files: field and potential keys; errors name file and line") {
   CHECK(scene_error("pot-key", circle_scene("potential: {expr: x}\n")).find("scene.yaml:6: unknown key 'expr'") !=
         std::string::npos);
   CHECK(scene_error("tol", circle_scene("integrator: {tolerance: 1}\n")).find("scene.yaml:6:") != std::string::npos);
+  const std::string cube = "shape: " BILLIARDS_SOURCE_DIR "/shapes/3d/cube.yaml\ninitial: {microcanonical: {energy: 1}}\n"
+                           "run: {particles: 1, time: 1}\n";
+  CHECK(scene_error("field3", cube + "force: {field: {amplitude: [x, y], omega: 1}}\n")
+            .find("scene.yaml:4: a field force is implemented in 2-D only") != std::string::npos);
+  CHECK(scene_error("potential3", cube + "potential: {expression: x}\n")
+            .find("scene.yaml:4: a potential is implemented in 2-D only") != std::string::npos);
 }
 
 TEST_CASE("a uniform drive through the integrator reproduces the closed-form flight, collision by collision") {

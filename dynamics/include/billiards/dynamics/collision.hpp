@@ -62,8 +62,8 @@ inline Vec2T<Real> reflect(const Vec2T<Real>& v, const Vec2T<Real>& n) {
 /// Rescales v to the speed² `v2`.  Flights that conserve energy restore it after every bounce
 /// against the value at the start, never against the previous bounce, so rounding cannot
 /// accumulate into a drift over 10⁹ bounces.
-template <class Real>
-inline void restore_speed(Vec2T<Real>& v, const Real& v2) {
+template <class Real, int D>
+inline void restore_speed(Eigen::Matrix<Real, D, 1>& v, const Real& v2) {
   using std::sqrt;
   v *= Real(sqrt(v2 / v.squaredNorm()));
 }
