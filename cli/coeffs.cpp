@@ -12,7 +12,14 @@
 namespace billiards::cli {
 
 std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene) {
-  if (scene.force.kind != dynamics::Force::Kind::periodic || scene.energy <= 0) return std::nullopt;
+  if (scene.energy <= 0 || scene.potential) return std::nullopt;
+  if (scene.force.kind == dynamics::Force::Kind::field) {
+    const auto& F = scene.force.field;
+    return analysis::coefficients(
+        scene.shape.region, [&](const geometry::Vec2& x) { return geometry::Vec2(F[0](x), F[1](x)); },
+        scene.force.omega, scene.mass, scene.energy);
+  }
+  if (scene.force.kind != dynamics::Force::Kind::periodic) return std::nullopt;
   analysis::Drive drive;
   drive.F = scene.force.amplitude;
   drive.omega = scene.force.omega;
@@ -21,8 +28,9 @@ std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene
 }
 
 void print_prediction(const analysis::Coefficients& c, double dt) {
-  fmt::print("prediction (E = {:g}): lambda = {:.6g}, wall integral = {:.6g}, C = {:.6g}\n", c.energy,
-             c.mean_free_path, c.wall_integral, c.C);
+  const std::string error = c.wall_integral_error > 0 ? fmt::format(" (± {:.2g})", c.wall_integral_error) : "";
+  fmt::print("prediction (E = {:g}): lambda = {:.6g}, wall integral = {:.6g}{}, C = {:.6g}\n", c.energy,
+             c.mean_free_path, c.wall_integral, error, c.C);
   fmt::print("  g1 = {:.6g}, g2 = {:.6g}; over dt = {:g}: <dE> = {:.6g}, Var(dE) = {:.6g}\n", c.g1, c.g2, dt,
              c.g1 * dt, c.g2 * dt);
   fmt::print("  validity: F/(m omega v) = {:.3g}, v/(omega lambda) = {:.3g} (both must be << 1)\n", c.force_ratio,
@@ -47,9 +55,13 @@ void add_coeffs(CLI::App& app) {
     args->overrides.set = parse_overrides(args->set);
     const auto scene = dynamics::load_scene(args->scene, args->overrides);
     const auto c = prediction_of(scene);
+    if (scene.potential)
+      throw InputError(args->scene, 0,
+                       "coeffs: the prediction in a potential U(x) (Sigma(E) and gamma_E(x) over the allowed region) "
+                       "is not implemented yet");
     if (!c)
       throw InputError(args->scene, 0,
-                       "coeffs needs a periodic force and a microcanonical initial energy (U = 0, uniform F)");
+                       "coeffs needs a periodic force (uniform or field) and a microcanonical initial energy");
     if (args->json)
       std::cout << nlohmann::json(*c).dump(2) << "\n";
     else

@@ -101,7 +101,8 @@ void compare(const CompareArgs& args) {
   const auto scene = load_scene(args);
   if (!prediction_of(scene))
     throw InputError(scene.file, 0,
-                     "compare needs a scene with a prediction: a periodic force and a microcanonical initial energy");
+                     "compare needs a scene with a prediction: a periodic or field force, no potential, and a microcanonical "
+                     "initial energy");
   const auto run = run_ensemble(scene, args);
   if (!run || !ranks().root()) return;
   std::vector<Fit> fits;

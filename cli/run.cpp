@@ -7,6 +7,7 @@
 
 #include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/analysis/statistics.hpp"
+#include "billiards/dynamics/field_flight.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics3/table3.hpp"
 
@@ -232,6 +233,11 @@ auto with_flight(const Scene& scene, Run&& run) {
       return run(dynamics3::PeriodicDriveFlight3{accel, scene.force.omega, scene.force.phase});
     return run(dynamics3::FreeFlight3{});
   }
+  // Closed forms where they exist; the integrator only for a position-dependent drive or a
+  // potential.
+  if (scene.potential || scene.force.kind == dynamics::Force::Kind::field)
+    return run(dynamics::FieldFlight(scene.force, scene.potential, scene.mass, dynamics::Table(scene.shape.region),
+                                     scene.integrator_tolerance));
   const dynamics::Vec2 accel = scene.force.amplitude / scene.mass;
   switch (scene.force.kind) {
     case dynamics::Force::Kind::constant: return run(dynamics::ConstantForceFlight{accel});
@@ -239,6 +245,7 @@ auto with_flight(const Scene& scene, Run&& run) {
       if (scene.force.quivering_walls)
         return run(dynamics::QuiveringWallFlight{accel, scene.force.omega, scene.force.phase});
       return run(dynamics::PeriodicDriveFlight{accel, scene.force.omega, scene.force.phase});
+    case dynamics::Force::Kind::field:  // (handled above)
     case dynamics::Force::Kind::none: break;
   }
   return run(dynamics::FreeFlight{});

@@ -1,8 +1,11 @@
 #include "billiards/analysis/coefficients.hpp"
 
+#include "billiards/analysis/wall.hpp"
+
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace billiards::analysis {
@@ -42,29 +45,63 @@ double constant_C(const geometry::Measures& m, const Drive& drive) {
          (drive.omega * drive.omega * geometry::mean_free_path(m));
 }
 
-Coefficients coefficients(const geometry::Measures& m, const Drive& drive, double E) {
+namespace {
+
+/// Everything that depends on the table and E only.
+Coefficients table_part(const geometry::Measures& m, double mass, double E) {
   Coefficients c;
   c.dimension = m.dimension;
   c.energy = E;
-  c.speed = speed_at(drive.mass, E);
+  c.speed = speed_at(mass, E);
   c.volume = m.volume;
   c.surface = m.surface;
   c.mean_free_path = geometry::mean_free_path(m);
-  c.wall_integral = geometry::wall_integral(m, drive.F);
-  c.density_of_states = density_of_states(m, drive.mass, E);
-  c.collision_rate_density = collision_rate_density(m, drive.mass, E);
+  c.density_of_states = density_of_states(m, mass, E);
+  c.collision_rate_density = collision_rate_density(m, mass, E);
   c.collision_rate = c.collision_rate_density * m.surface;
-  c.C = constant_C(m, drive);
-  c.g1 = drift_g1(m, drive, E);
-  c.g2 = diffusion_g2(m, drive, E);
-  c.force_ratio = drive.F.norm() / (drive.mass * drive.omega * c.speed);
-  c.length_ratio = c.speed / (drive.omega * c.mean_free_path);
+  return c;
+}
+
+/// The validity ratios and their warnings, for a force of size at most F.
+void check_validity(Coefficients& c, double F, double omega, double mass) {
+  c.force_ratio = F / (mass * omega * c.speed);
+  c.length_ratio = c.speed / (omega * c.mean_free_path);
   if (c.force_ratio > validity_threshold)
     c.warnings.push_back(fmt::format("F/(m omega v_E) = {:.3g} is not small: the drive is not a weak perturbation "
                                      "(the paper's condition 1)", c.force_ratio));
   if (c.length_ratio > validity_threshold)
     c.warnings.push_back(fmt::format("v_E/(omega lambda) = {:.3g} is not small: a period is not short against a "
                                      "free flight (the paper's condition 2)", c.length_ratio));
+}
+
+}  // namespace
+
+Coefficients coefficients(const geometry::Measures& m, const Drive& drive, double E) {
+  Coefficients c = table_part(m, drive.mass, E);
+  c.wall_integral = geometry::wall_integral(m, drive.F);
+  c.C = constant_C(m, drive);
+  c.g1 = drift_g1(m, drive, E);
+  c.g2 = diffusion_g2(m, drive, E);
+  check_validity(c, drive.F.norm(), drive.omega, drive.mass);
+  return c;
+}
+
+Coefficients coefficients(const geometry::Region2& region, const std::function<geometry::Vec2(const geometry::Vec2&)>& F,
+                          double omega, double mass, double E) {
+  Coefficients c = table_part(geometry::measures_of(region), mass, E);
+  const Quadrature W = wall_integral(region, F);
+  c.wall_integral = W.value;
+  c.wall_integral_error = W.error;
+  auto gamma_E = [&](const geometry::Vec2&) { return c.collision_rate_density; };
+  auto v_E = [&](const geometry::Vec2&) { return c.speed; };
+  c.g1 = drift_g1(region, F, gamma_E, omega, mass).value;
+  c.g2 = diffusion_g2(region, F, gamma_E, v_E, omega).value;
+  c.C = c.g1 / std::sqrt(E);
+  double F_max = 0;
+  for (const geometry::Loop* loop : region.loops())
+    for (const geometry::Piece& piece : loop->pieces)
+      for (int k = 0; k <= 256; ++k) F_max = std::max(F_max, F(geometry::point_along(piece, k / 256.0)).norm());
+  check_validity(c, F_max, omega, mass);
   return c;
 }
 
@@ -76,6 +113,7 @@ void to_json(nlohmann::json& j, const Coefficients& c) {
        {"S", c.surface},
        {"mean_free_path", c.mean_free_path},
        {"wall_integral", c.wall_integral},
+       {"wall_integral_error", c.wall_integral_error},
        {"Sigma", c.density_of_states},
        {"gamma_E", c.collision_rate_density},
        {"collision_rate", c.collision_rate},

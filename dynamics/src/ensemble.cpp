@@ -2,6 +2,8 @@
 
 #include "billiards/dynamics/table.hpp"
 
+#include <stdexcept>
+
 namespace billiards::dynamics {
 
 std::uint64_t EnsembleResult::collisions() const {
@@ -30,14 +32,39 @@ std::vector<double> EnsembleResult::energy_changes(std::size_t k, std::size_t m)
   return dE;
 }
 
+namespace {
+
+/// A point uniform over the part of the region where `allowed` holds (rejection from the
+/// bounding box).
+template <class Allowed>
+Vec2 uniform_point(const Table& table, ParticleRng& rng, Allowed allowed) {
+  const Vec2 lo = table.lo(), size = table.hi() - table.lo();
+  for (long tries = 0; tries < 100000000; ++tries) {
+    const Vec2 x = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
+    if (table.contains(x) && allowed(x)) return x;
+  }
+  throw std::runtime_error("no allowed point found in the region after 1e8 samples");
+}
+
+Vec2 isotropic(double speed, ParticleRng& rng) {
+  const double angle = 2 * geometry::pi * rng.uniform();
+  return speed * Vec2(std::cos(angle), std::sin(angle));
+}
+
+}  // namespace
+
 State sample_microcanonical(const Table& table, double speed, ParticleRng& rng) {
   State s;
-  const Vec2 lo = table.lo(), size = table.hi() - table.lo();
-  do {
-    s.x = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
-  } while (!table.contains(s.x));
-  const double angle = 2 * geometry::pi * rng.uniform();
-  s.v = speed * Vec2(std::cos(angle), std::sin(angle));
+  s.x = uniform_point(table, rng, [](const Vec2&) { return true; });
+  s.v = isotropic(speed, rng);
+  return s;
+}
+
+State sample_microcanonical(const Table& table, double energy, double mass,
+                            const std::function<double(const Vec2&)>& potential, ParticleRng& rng) {
+  State s;
+  s.x = uniform_point(table, rng, [&](const Vec2& x) { return potential(x) < energy; });
+  s.v = isotropic(std::sqrt(2 * (energy - potential(s.x)) / mass), rng);
   return s;
 }
 

@@ -4,6 +4,7 @@
 #include "billiards/dynamics3/table3.hpp"
 #include "billiards/geometry/yaml_reader.hpp"
 
+#include <fmt/core.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -19,6 +20,7 @@ const char* Force::name() const {
     case Kind::none: return "none";
     case Kind::constant: return "constant";
     case Kind::periodic: return quivering_walls ? "periodic (quivering walls)" : "periodic";
+    case Kind::field: return "field";
   }
   return "?";
 }
@@ -29,12 +31,34 @@ namespace fs = std::filesystem;
 
 using SceneReader = YamlReader;
 
-Force read_force(const SceneReader& r, const YAML::Node& n, int dimension) {
+/// A function of x, y from a scalar node.
+CoordinateFunction coordinate_function(const SceneReader& r, const Expressions& expr, const YAML::Node& n) {
+  if (!n.IsScalar()) r.fail(n, "expected an expression of x and y");
+  return CoordinateFunction(n.Scalar(), expr, r.file(), r.line(n));
+}
+
+/// A vector of two functions of x, y: [f_x, f_y].
+std::array<CoordinateFunction, 2> coordinate_vector(const SceneReader& r, const Expressions& expr,
+                                                    const YAML::Node& n, const std::string& what) {
+  if (!n.IsSequence() || n.size() != 2) r.fail(n, what + " must be a list of two expressions [f_x, f_y]");
+  return {coordinate_function(r, expr, n[0]), coordinate_function(r, expr, n[1])};
+}
+
+Force read_force(const SceneReader& r, const Expressions& expr, const YAML::Node& n, int dimension) {
   Force f;
   f.amplitude = Eigen::VectorXd::Zero(dimension);
   if (!n || (n.IsScalar() && n.Scalar() == "none")) return f;
-  r.expect_keys(n, {"constant", "periodic"}, "'force'");
-  if (n.size() != 1) r.fail(n, "'force' is one of: none, constant, periodic");
+  r.expect_keys(n, {"constant", "periodic", "field"}, "'force'");
+  if (n.size() != 1) r.fail(n, "'force' is one of: none, constant, periodic, field");
+  if (const YAML::Node field = n["field"]) {
+    r.expect_keys(field, {"amplitude", "omega", "phase"}, "a field force");
+    if (dimension == 3) r.fail(field, "a field force is implemented in 2-D only");
+    f.kind = Force::Kind::field;
+    f.field = coordinate_vector(r, expr, r.required(field, "amplitude", "a field force"), "a field amplitude");
+    f.omega = r.positive(r.required(field, "omega", "a field force"), "omega");
+    f.phase = field["phase"] ? r.number(field["phase"]) : 0.0;
+    return f;
+  }
   if (const YAML::Node c = n["constant"]) {
     r.expect_keys(c, {"amplitude"}, "a constant force");
     if (dimension == 3) r.fail(c, "a constant force is not implemented in 3-D (periodic and none are)");
@@ -55,6 +79,33 @@ Force read_force(const SceneReader& r, const YAML::Node& n, int dimension) {
     if (f.quivering_walls && dimension == 3) r.fail(picture, "the quivering-walls picture is not implemented in 3-D");
   }
   return f;
+}
+
+/// potential: {expression: U, gradient: [dU/dx, dU/dy]}, the gradient optional: when it is
+/// missing it is the exact derivative of U; when given, it must agree with that derivative on
+/// a grid over the table's bounding box (so a typo cannot make a non-conservative force).
+Potential read_potential(const SceneReader& r, const Expressions& expr, const YAML::Node& n, const Table& table) {
+  r.expect_keys(n, {"expression", "gradient"}, "'potential'");
+  Potential p;
+  p.U = coordinate_function(r, expr, r.required(n, "expression", "'potential'"));
+  p.gradient = {p.U.derivative(0), p.U.derivative(1)};
+  if (const YAML::Node g = n["gradient"]) {
+    const auto given = coordinate_vector(r, expr, g, "a potential's gradient");
+    const Vec2 lo = table.lo(), size = table.hi() - table.lo();
+    constexpr int k = 6;
+    for (int axis = 0; axis < 2; ++axis)
+      for (int i = 0; i <= k; ++i)
+        for (int j = 0; j <= k; ++j) {
+          const Vec2 x = lo + Vec2(size.x() * i / k, size.y() * j / k);
+          const double want = p.gradient[axis](x), got = given[axis](x);
+          if (!(std::abs(got - want) <= 1e-8 * (1 + std::abs(want))))
+            r.fail(g[axis], fmt::format("gradient[{}] is not the derivative of the potential along {} (at ({:g}, "
+                                        "{:g}): {:.10g}, the derivative is {:.10g})",
+                                        axis, axis ? 'y' : 'x', x.x(), x.y(), got, want));
+        }
+    p.gradient = given;
+  }
+  return p;
 }
 
 /// Record times: a list, {every: dt} or {count: n} (evenly from 0 to the end time).  The end
@@ -136,7 +187,8 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
   Expressions expr;
   const SceneReader r(path, expr);
   if (!doc.IsMap()) throw InputError(path, 1, "a scene file is a YAML mapping");
-  r.expect_keys(doc, {"shape", "set", "parameters", "mass", "initial", "force", "run", "output"}, "a scene file");
+  r.expect_keys(doc, {"shape", "set", "parameters", "mass", "initial", "force", "potential", "integrator", "run", "output"},
+                "a scene file");
 
   // Scene parameters take the --set values that name them; the rest go to the shape, after
   // the scene's own `set:` block.
@@ -163,9 +215,19 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
     scene.shape = geometry::load_shape(shape_path, shape_set);
 
   scene.mass = doc["mass"] ? r.positive(doc["mass"], "mass") : 1.0;
-  scene.force = read_force(r, doc["force"], scene.dimension);
+  scene.force = read_force(r, expr, doc["force"], scene.dimension);
+  if (const YAML::Node u = doc["potential"]) {
+    if (scene.dimension == 3) r.fail(u, "a potential is implemented in 2-D only");
+    scene.potential = read_potential(r, expr, u, Table(scene.shape.region));
+  }
+  if (const YAML::Node integ = doc["integrator"]) {
+    r.expect_keys(integ, {"tolerance"}, "'integrator'");
+    scene.integrator_tolerance = r.positive(r.required(integ, "tolerance", "'integrator'"), "integrator.tolerance");
+    if (scene.integrator_tolerance < 1e-14 || scene.integrator_tolerance > 1e-2)
+      r.fail(integ["tolerance"], "integrator.tolerance must lie in [1e-14, 1e-2]");
+  }
   if (ov.omega) {
-    if (scene.force.kind != Force::Kind::periodic)
+    if (scene.force.kind != Force::Kind::periodic && scene.force.kind != Force::Kind::field)
       throw InputError(path, 0, "--omega needs a periodic force in the scene");
     if (!(*ov.omega > 0)) throw InputError("--omega", 0, "omega must be positive");
     scene.force.omega = *ov.omega;

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json_fwd.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ struct Coefficients {
   double volume = 0, surface = 0;    // V, S
   double mean_free_path = 0;         // λ = d B_d/B_{d−1} V/S
   double wall_integral = 0;          // ∫ (F·n)² dS
+  double wall_integral_error = 0;    // its quadrature error estimate (0: closed form, uniform F)
   double density_of_states = 0;      // Σ(E) = d B_d V v^{d−2}/m
   double collision_rate_density = 0; // γ_E = B_{d−1}/(d B_d) v/V, uniform on the wall
   double collision_rate = 0;         // γ_E S = v/λ
@@ -40,7 +42,7 @@ struct Coefficients {
 };
 
 /// nlohmann::json conversion (`nlohmann::json j = c;`), keys: dimension, E, v_E, V, S,
-/// mean_free_path, wall_integral, Sigma, gamma_E, collision_rate, C, g1, g2,
+/// mean_free_path, wall_integral, wall_integral_error, Sigma, gamma_E, collision_rate, C, g1, g2,
 /// validity_force_ratio, validity_length_ratio, warnings.
 void to_json(nlohmann::json& j, const Coefficients& c);
 
@@ -57,5 +59,13 @@ double diffusion_g2(const geometry::Measures& m, const Drive& drive, double E);
 double constant_C(const geometry::Measures& m, const Drive& drive);
 
 Coefficients coefficients(const geometry::Measures& m, const Drive& drive, double E);
+
+/// The same for a drive F(x) cos(ωt) whose amplitude depends on the position, in a 2-D table
+/// with U = 0: ∮(F·n)² dS by adaptive Gauss–Kronrod along each piece (wall.hpp, with its error
+/// estimate), g1 and g2 by wall.hpp's drift_g1 and diffusion_g2 with the uniform γ_E and v_E
+/// (so g1 = C√E and g2 = 4C E^{3/2}/3 still hold, with C = g1/√E).  The force ratio uses the
+/// largest |F| on the wall (sampled).
+Coefficients coefficients(const geometry::Region2& region, const std::function<geometry::Vec2(const geometry::Vec2&)>& F,
+                          double omega, double mass, double E);
 
 }  // namespace billiards::analysis

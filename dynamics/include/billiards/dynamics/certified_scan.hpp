@@ -34,11 +34,14 @@ struct Sample {
 /// First τ in [0, tau_end] at which f crosses zero upward at a point in the wall's span.
 /// `sample(τ)` evaluates f; `earliest(τ, f)` returns a time before which f cannot vanish
 /// (from the guiding line and the bounded oscillation), or +∞; `tolerance(τ)` is the rounding
-/// level of f at τ.  Inlined into each caller so that its lambdas fold into one loop
+/// level of f at τ.  When no crossing is found, `*resume` (if given) receives the first τ beyond
+/// tau_end at which the scan would sample next: a caller that extends f piece by piece (an
+/// integrated flight, step by step) continues from there.  Inlined into each caller so that its lambdas fold into one loop
 /// (measured with callgrind: 12% fewer instructions than a call).
 template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolFn>
 [[gnu::always_inline]] inline Real first_outward_crossing(SampleFn sample, EarliestFn earliest, SpanFn in_span,
-                                                          TolFn tolerance, const Real& tau_end) {
+                                                          TolFn tolerance, const Real& tau_end,
+                                                          Real* resume = nullptr) {
   using std::abs;
   using std::max;
   using std::min;
@@ -46,7 +49,10 @@ template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolF
   constexpr int max_steps = 1000000;
   Real tau = 0;
   for (int step = 0; step < max_steps; ++step) {
-    if (tau > tau_end || tau == never) return never;  // (τ = ∞: no window ahead, with no horizon)
+    if (tau > tau_end || tau == never) {  // (τ = ∞: no window ahead, with no horizon)
+      if (resume) *resume = tau;
+      return never;
+    }
     const auto p = sample(tau);
     const Real tol = tolerance(tau);
     Real s;

@@ -36,6 +36,15 @@ struct RunOptions {
 template <class State>
 double kinetic_energy(const State& s, double mass) { return 0.5 * mass * s.v.squaredNorm(); }
 
+/// The energy an ensemble records: ½mv², plus U(x) for a flight in a potential.
+template <class Flight>
+double energy_of(const Flight& flight, const typename Flight::State& s, double mass) {
+  if constexpr (requires { flight.potential(s.x); })
+    return kinetic_energy(s, mass) + flight.potential(s.x);
+  else
+    return kinetic_energy(s, mass);
+}
+
 /// One particle's run, a collision at a time: records its energy at each record time into
 /// `energies` (NaN after an escape).  Flights are searched up to the last record time only.
 /// `TableT` is a 2-D table (table.hpp) or a 3-D one (dynamics3/table3.hpp): the verbs
@@ -61,7 +70,7 @@ class Trajectory {
     for (; k_ < n && times[k_] <= t_next; ++k_) {
       const auto r = flight_->advance(s_, times[k_]);
       if (!table_->contains(r.x)) return escape();
-      energies_[k_] = kinetic_energy(r, opt_->mass);
+      energies_[k_] = energy_of(*flight_, r, opt_->mass);
     }
     if (k_ == n) return false;
     if (!hit.found()) return escape();  // no wall ahead of a particle that should meet one

@@ -6,6 +6,7 @@
 #include "billiards/dynamics/state.hpp"
 
 #include <cstdint>
+#include <functional>
 #include <random>
 
 namespace billiards::dynamics {
@@ -36,5 +37,11 @@ class ParticleRng {
 /// Microcanonical sample for a standard billiard: position uniform in the region (rejection
 /// from the bounding box), velocity isotropic with the given speed.
 State sample_microcanonical(const Table& table, double speed, ParticleRng& rng);
+
+/// Microcanonical sample at energy E in a potential U: position uniform over the allowed part
+/// {U(x) < E} of the region (the 2-D microcanonical density is uniform there), velocity
+/// isotropic with |v| = √(2(E − U(x))/m).
+State sample_microcanonical(const Table& table, double energy, double mass,
+                            const std::function<double(const Vec2&)>& potential, ParticleRng& rng);
 
 }  // namespace billiards::dynamics

@@ -4,11 +4,13 @@
 
 #include "billiards/dynamics/state.hpp"
 #include "billiards/dynamics3/walls3.hpp"
+#include "billiards/geometry/coordinate_function.hpp"
 #include "billiards/geometry/expression.hpp"
 #include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/shape_file.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,18 +18,26 @@
 
 namespace billiards::dynamics {
 
-/// The force between collisions: none, a static uniform force F, or the uniform periodic
-/// drive F cos(ω t + phase) of the paper.
+/// The force between collisions: none, a static uniform force F, the uniform periodic drive
+/// F cos(ω t + phase) of the paper, or a drive F(x) cos(ω t + phase) whose amplitude depends on
+/// the position (`field`).
 struct Force {
-  enum class Kind { none, constant, periodic };
+  enum class Kind { none, constant, periodic, field };
   Kind kind = Kind::none;
-  Eigen::VectorXd amplitude = Eigen::VectorXd::Zero(2);  // F (the scene's dimension)
-  double omega = 0;               // ω (periodic only)
-  double phase = 0;               // (periodic only)
+  Eigen::VectorXd amplitude = Eigen::VectorXd::Zero(2);  // F (the scene's dimension; uniform kinds)
+  std::array<CoordinateFunction, 2> field;  // F(x) (field only, 2-D)
+  double omega = 0;               // ω (periodic and field)
+  double phase = 0;               // (periodic and field)
   /// periodic only: simulate the equivalent free particle between walls translating by
   /// F cos(ω t + phase)/(mω²) (`picture: quivering-walls`; QuiveringWallFlight).
   bool quivering_walls = false;
   const char* name() const;
+};
+
+/// A potential U(x) with its gradient (given in the scene, or its exact derivatives); 2-D.
+struct Potential {
+  CoordinateFunction U;
+  std::array<CoordinateFunction, 2> gradient;
 };
 
 /// A scene in 2-D or 3-D: `dimension` says which of `shape`/`shape3` and
@@ -45,6 +55,9 @@ struct Scene {
   std::vector<dynamics3::State3> initial_states3;   // 3-D
   std::string initial_csv;
   Force force;
+  std::optional<Potential> potential;
+  /// Relative tolerance of the integrator of flights in a general field (field_flight.hpp).
+  double integrator_tolerance = 1e-10;
   std::size_t particles = 0;
   double time = 0;                   // end of the run
   std::vector<double> record_times;  // increasing, last = time
