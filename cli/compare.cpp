@@ -99,10 +99,11 @@ struct CompareArgs : RunArgs {
 
 void compare(const CompareArgs& args) {
   const auto scene = load_scene(args);
-  if (!prediction_of(scene))
+  const auto prediction = prediction_of(scene);
+  if (!prediction || !prediction->closed_form)
     throw InputError(scene.file, 0,
-                     "compare needs a scene with a prediction: a periodic or field force, no potential, and a microcanonical "
-                     "initial energy");
+                     "compare needs a scene with an analytic Fokker-Planck prediction: a periodic or field force, no "
+                     "potential, and a microcanonical initial energy");
   const auto run = run_ensemble(scene, args);
   if (!run || !ranks().root()) return;
   std::vector<Fit> fits;

@@ -30,7 +30,9 @@ void fp(FpArgs& args) {
   args.overrides.set = parse_overrides(args.set);
   const auto scene = dynamics::load_scene(args.scene, args.overrides);
   const auto c = prediction_of(scene);
-  if (!c) throw InputError(args.scene, 0, "fp needs a periodic force and a microcanonical initial energy");
+  if (!c || !c->closed_form)
+    throw InputError(args.scene, 0,
+                     "fp needs a periodic force (uniform or field), no potential, and a microcanonical initial energy");
   std::sort(args.times.begin(), args.times.end());
   if (args.times.empty() || !(args.times.front() > 0)) throw InputError("--times", 0, "times must be positive");
   // Work in s = C t, where g1 = √E and g2 = 4E^{3/2}/(d+1).  The δ start cannot be gridded:

@@ -321,9 +321,46 @@ TEST_CASE("coeffs: a uniform field given as expressions equals the closed form; 
   const auto out = billiard("coeffs scenes/clover-field.yaml --json");
   REQUIRE(out.status == 0);
   CHECK(out.output.find("\"wall_integral_error\"") != std::string::npos);
-  const auto bowl = billiard("coeffs scenes/stadium-bowl.yaml");
+  const auto bowl = billiard("coeffs scenes/stadium-bowl.yaml");  // a potential but no drive
   CHECK(bowl.status != 0);
-  CHECK(bowl.output.find("potential U(x)") != std::string::npos);
+  CHECK(bowl.output.find("needs a periodic force") != std::string::npos);
+}
+
+TEST_CASE("a potential: coeffs from the quadrature over {U < E}, and the driven clover in a tilt matches them") {
+  // U = g y tilts the clover so strongly (E0 = 1/2, U up to ±0.86) that the top lobe is partly
+  // forbidden: the prediction with the potential is 1.7× the one without, far beyond the SE.
+  const auto dir = scratch("field-tilt");
+  const std::string scene = "shape: " BILLIARDS_SOURCE_DIR
+                            "/shapes/clover.yaml\nparameters: {g: 0.4, F: 10, omega: 320*pi}\ninitial:\n"
+                            "  microcanonical: {energy: 1/2}\nforce:\n  periodic: {amplitude: [F/sqrt(2), F/sqrt(2)], "
+                            "omega: omega}\nintegrator: {tolerance: 1e-8}\nrun: {particles: 3000, time: 8, seed: 5}\n";
+  write_file(dir / "flat.yaml", scene);
+  write_file(dir / "tilt.yaml", scene + "potential: {expression: g*y}\n");
+  const auto coeffs = [&](const std::string& name) {
+    const auto r = billiard("coeffs --json " + (dir / name).string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    return nlohmann::json::parse(r.output);
+  };
+  const auto flat = coeffs("flat.yaml"), tilt = coeffs("tilt.yaml");
+  CHECK(tilt["closed_form"] == false);
+  CHECK(tilt["C"].is_null());
+  CHECK(tilt["Sigma"].get<double>() < 0.95 * flat["Sigma"].get<double>());  // part of the table is forbidden
+  CHECK(tilt["g2"].get<double>() > 1.5 * flat["g2"].get<double>());
+
+  const auto r = billiard("run " + (dir / "tilt.yaml").string() + " --quiet --no-csv --threads 2 --out " +
+                          (dir / "out").string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const auto summary = nlohmann::json::parse(read_file(dir / "out" / "summary.json"));
+  CHECK(summary["escapes"] == 0);
+  CHECK(summary["prediction"]["g2"] == tilt["g2"]);
+  CHECK(std::abs(summary["mean_dE_deviation_se"].get<double>()) < 3);
+  CHECK(std::abs(summary["var_dE_deviation_se"].get<double>()) < 3);
+  CHECK(summary.count("fp_var_dE") == 0);  // no analytic Fokker–Planck solution with U ≠ 0
+  const double se = summary["se_var_dE"];
+  CHECK(std::abs(summary["var_dE"].get<double>() - 8 * flat["g2"].get<double>()) > 10 * se);
+  CHECK(billiard("compare " + (dir / "tilt.yaml").string()).status != 0);
 }
 
 TEST_CASE("billiard run on field scenes: identical for 1 and 2 threads; a potential's energy is conserved") {

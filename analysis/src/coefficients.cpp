@@ -1,5 +1,6 @@
 #include "billiards/analysis/coefficients.hpp"
 
+#include "billiards/analysis/potential.hpp"
 #include "billiards/analysis/wall.hpp"
 
 #include <fmt/core.h>
@@ -74,6 +75,15 @@ void check_validity(Coefficients& c, double F, double omega, double mass) {
                                      "free flight (the paper's condition 2)", c.length_ratio));
 }
 
+/// The largest |F(x)| over the wall, sampled at 257 points per piece.
+double largest_force_on_wall(const geometry::Region2& region, const ForceField& F) {
+  double F_max = 0;
+  for (const geometry::Loop* loop : region.loops())
+    for (const geometry::Piece& piece : loop->pieces)
+      for (int k = 0; k <= 256; ++k) F_max = std::max(F_max, F(geometry::point_along(piece, k / 256.0)).norm());
+  return F_max;
+}
+
 }  // namespace
 
 Coefficients coefficients(const geometry::Measures& m, const Drive& drive, double E) {
@@ -97,11 +107,36 @@ Coefficients coefficients(const geometry::Region2& region, const std::function<g
   c.g1 = drift_g1(region, F, gamma_E, omega, mass).value;
   c.g2 = diffusion_g2(region, F, gamma_E, v_E, omega).value;
   c.C = c.g1 / std::sqrt(E);
-  double F_max = 0;
-  for (const geometry::Loop* loop : region.loops())
-    for (const geometry::Piece& piece : loop->pieces)
-      for (int k = 0; k <= 256; ++k) F_max = std::max(F_max, F(geometry::point_along(piece, k / 256.0)).norm());
-  check_validity(c, F_max, omega, mass);
+  check_validity(c, largest_force_on_wall(region, F), omega, mass);
+  return c;
+}
+
+Coefficients coefficients(const geometry::Region2& region, const Potential& U, const ForceField& F, double omega,
+                          double mass, double E) {
+  Coefficients c = table_part(geometry::measures_of(region), mass, E);
+  c.closed_form = false;
+  c.C = 0;
+  const PotentialCoefficients p = potential_coefficients(region, U, F, E, omega, mass);
+  c.density_of_states = p.Sigma.value;
+  c.g1 = p.g1.value;
+  c.g1_error = p.g1.error;
+  c.g2 = p.g2.value;
+  c.g2_error = p.g2.error;
+  const Quadrature W = wall_integral(region, F);
+  c.wall_integral = W.value;
+  c.wall_integral_error = W.error;
+  c.speed = 0;
+  if (p.Sigma.value > 0) {
+    const ScalarField gamma = collision_rate_field(U, E, mass, p.Sigma.value);
+    const ScalarField v = speed_field(U, E, mass);
+    c.collision_rate = wall_quadrature(region, [&](const geometry::Vec2& x, const geometry::Vec2&) { return gamma(x); }).value;
+    const double flux = wall_quadrature(region, [&](const geometry::Vec2& x, const geometry::Vec2&) {
+                          return gamma(x) * v(x);
+                        }).value;
+    if (c.collision_rate > 0) c.speed = flux / c.collision_rate;
+  }
+  c.collision_rate_density = c.collision_rate / c.surface;
+  if (c.speed > 0) check_validity(c, largest_force_on_wall(region, F), omega, mass);
   return c;
 }
 
@@ -117,9 +152,12 @@ void to_json(nlohmann::json& j, const Coefficients& c) {
        {"Sigma", c.density_of_states},
        {"gamma_E", c.collision_rate_density},
        {"collision_rate", c.collision_rate},
-       {"C", c.C},
+       {"C", c.closed_form ? nlohmann::json(c.C) : nlohmann::json(nullptr)},
        {"g1", c.g1},
        {"g2", c.g2},
+       {"g1_error", c.g1_error},
+       {"g2_error", c.g2_error},
+       {"closed_form", c.closed_form},
        {"validity_force_ratio", c.force_ratio},
        {"validity_length_ratio", c.length_ratio},
        {"warnings", c.warnings}};

@@ -33,6 +33,10 @@ struct Coefficients {
   double collision_rate = 0;         // γ_E S = v/λ
   double C = 0;                      // g1 = C √E, g2 = 4 C E^{3/2}/(d+1)
   double g1 = 0, g2 = 0;
+  double g1_error = 0, g2_error = 0; // quadrature error estimates (0: closed forms)
+  // False with a potential U(x): g1, g2 are then not of the form C√E, 4C E^{3/2}/(d+1), so there
+  // is no constant C (left 0, `null` in JSON) and no analytic Fokker–Planck solution.
+  bool closed_form = true;
   double force_ratio = 0;            // F/(m ω v_E): must be ≪ 1 (the paper's condition 1)
   // v_E/(ω l): must be ≪ 1 (condition 2), with l taken as the mean free path λ.  The paper's l
   // is the SHORTEST length of the problem: a wall feature, or a scale on which F varies, that is
@@ -43,7 +47,7 @@ struct Coefficients {
 
 /// nlohmann::json conversion (`nlohmann::json j = c;`), keys: dimension, E, v_E, V, S,
 /// mean_free_path, wall_integral, wall_integral_error, Sigma, gamma_E, collision_rate, C, g1, g2,
-/// validity_force_ratio, validity_length_ratio, warnings.
+/// g1_error, g2_error, closed_form, validity_force_ratio, validity_length_ratio, warnings.
 void to_json(nlohmann::json& j, const Coefficients& c);
 
 /// Validity ratios above this are reported as warnings.

@@ -12,6 +12,7 @@
 // d B_d V v_E^{d−2}/m.
 #pragma once
 
+#include "billiards/analysis/coefficients.hpp"
 #include "billiards/analysis/quadrature.hpp"
 #include "billiards/analysis/wall.hpp"
 #include "billiards/geometry/pieces.hpp"
@@ -67,5 +68,14 @@ struct EnergyCoefficients {
 };
 EnergyCoefficients energy_coefficients(const geometry::Region2& region, const Potential& U, const ForceField& F,
                                        double omega, double mass, double tolerance = 1e-12);
+
+/// Everything `billiard coeffs` reports, with a potential: Σ, g1, g2 (with their errors) from
+/// potential_coefficients; the collision rate ∮ γ_E dS; γ_E its mean over the wall; V, S and λ
+/// those of the table (geometry only); ∮ (F·n)² dS over the whole wall.  v_E, used by the
+/// validity ratios, is the mean speed of the particles that hit the wall, ∮ γ_E v_E dS / ∮ γ_E dS
+/// (v_E → 0 at turning points on the wall, where condition 1 fails locally whatever ω).
+/// `closed_form` is false and C is 0.
+Coefficients coefficients(const geometry::Region2& region, const Potential& U, const ForceField& F, double omega,
+                          double mass, double E);
 
 }  // namespace billiards::analysis
