@@ -11,15 +11,6 @@
 
 namespace billiards::cli {
 
-std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene) {
-  if (scene.force.kind != dynamics::Force::Kind::periodic || scene.energy <= 0) return std::nullopt;
-  analysis::Drive drive;
-  drive.F = Eigen::Vector2d(scene.force.amplitude);
-  drive.omega = scene.force.omega;
-  drive.mass = scene.mass;
-  return analysis::coefficients(geometry::measures_of(scene.shape.region), drive, scene.energy);
-}
-
 void print_prediction(const analysis::Coefficients& c, double dt) {
   fmt::print("prediction (E = {:g}): lambda = {:.6g}, wall integral = {:.6g}, C = {:.6g}\n", c.energy,
              c.mean_free_path, c.wall_integral, c.C);
@@ -46,7 +37,7 @@ void add_coeffs(CLI::App& app) {
   cmd->callback([args] {
     args->overrides.set = parse_overrides(args->set);
     const auto scene = dynamics::load_scene(args->scene, args->overrides);
-    const auto c = prediction_of(scene);
+    const auto c = analysis::prediction_of(scene);
     if (!c)
       throw InputError(args->scene, 0,
                        "coeffs needs a periodic force and a microcanonical initial energy (U = 0, uniform F)");

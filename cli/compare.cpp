@@ -99,7 +99,7 @@ struct CompareArgs : RunArgs {
 
 void compare(const CompareArgs& args) {
   const auto scene = load_scene(args);
-  if (!prediction_of(scene))
+  if (!analysis::prediction_of(scene))
     throw InputError(scene.file, 0,
                      "compare needs a scene with a prediction: a periodic force and a microcanonical initial energy");
   const auto run = run_ensemble(scene, args);

@@ -7,7 +7,7 @@
 
 #include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/analysis/statistics.hpp"
-#include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics/scene_run.hpp"
 
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -18,7 +18,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <type_traits>
 
 namespace billiards::cli {
 
@@ -93,16 +92,8 @@ nlohmann::json fingerprint_of(const Scene& scene) {
 template <class Flight>
 EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& args, double& seconds) {
   const dynamics::Table table(scene.shape.region);
-  dynamics::RunOptions opt;
-  opt.record_times = scene.record_times;
-  opt.mass = scene.mass;
-  // A forced flight costs ~10 containment tests, so every flight of a driven run is checked
-  // (12% measured); free flights are 2× slower checked, so there it is --verify.
-  opt.verify_every_flight = args.verify || !std::is_same_v<Flight, dynamics::FreeFlight>;
-  const auto sampled = dynamics::microcanonical(table, flight, std::sqrt(2 * scene.energy / scene.mass), scene.seed);
-  auto initial = [&](std::size_t i) {
-    return scene.initial_states.empty() ? sampled(i) : flight.start(scene.initial_states[i]);
-  };
+  const auto opt = dynamics::run_options<Flight>(scene, args.verify);
+  const auto initial = dynamics::initial_states(scene, table, flight);
   const std::size_t n = scene.particles, m = opt.record_times.size();
   EnsembleResult result;
   result.energies.resize(n * m);
@@ -211,19 +202,6 @@ void write_energies_csv(std::ostream& out, const Scene& scene, const EnsembleRes
   }
 }
 
-/// The flight model the scene needs, chosen at compile time for the whole ensemble.
-template <class Run>
-auto with_flight(const Scene& scene, Run&& run) {
-  const dynamics::Vec2 accel = scene.force.amplitude / scene.mass;
-  switch (scene.force.kind) {
-    case dynamics::Force::Kind::constant: return run(dynamics::ConstantForceFlight{accel});
-    case dynamics::Force::Kind::periodic:
-      return run(dynamics::PeriodicDriveFlight{accel, scene.force.omega, scene.force.phase});
-    case dynamics::Force::Kind::none: break;
-  }
-  return run(dynamics::FreeFlight{});
-}
-
 }  // namespace
 
 void add_run_options(CLI::App* cmd, RunArgs& args) {
@@ -255,11 +233,11 @@ std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_i
   if (args.threads <= 0) args.threads = omp_get_max_threads();
   fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
              scene.shape.region.name, scene.force.name(), scene.time);
-  RunOutcome run{scene, prediction_of(scene), {}, {}};
+  RunOutcome run{scene, analysis::prediction_of(scene), {}, {}};
   if (run.prediction) print_prediction(*run.prediction, scene.time);
   double seconds = 0;
   try {
-    run.result = with_flight(scene, [&](const auto& flight) { return execute(scene, flight, args, seconds); });
+    run.result = dynamics::with_flight(scene, [&](const auto& flight) { return execute(scene, flight, args, seconds); });
   } catch (const Interrupted&) {
     fmt::print("stopped after {} new chunk(s); the same command resumes from {}.partial/\n", args.max_chunks,
                scene.output_dir);

@@ -1,5 +1,7 @@
 #include "billiards/analysis/coefficients.hpp"
 
+#include "billiards/dynamics/scene.hpp"
+
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
@@ -85,6 +87,15 @@ void to_json(nlohmann::json& j, const Coefficients& c) {
        {"validity_force_ratio", c.force_ratio},
        {"validity_length_ratio", c.length_ratio},
        {"warnings", c.warnings}};
+}
+
+std::optional<Coefficients> prediction_of(const dynamics::Scene& scene) {
+  if (scene.force.kind != dynamics::Force::Kind::periodic || scene.energy <= 0) return std::nullopt;
+  Drive drive;
+  drive.F = Eigen::Vector2d(scene.force.amplitude);
+  drive.omega = scene.force.omega;
+  drive.mass = scene.mass;
+  return coefficients(geometry::measures_of(scene.shape.region), drive, scene.energy);
 }
 
 }  // namespace billiards::analysis

@@ -104,9 +104,14 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
   if (!in) throw InputError(path, 0, "cannot open scene file");
   std::stringstream buffer;
   buffer << in.rdbuf();
+  return parse_scene(buffer.str(), path, fs::path(path).parent_path().string(), ov);
+}
+
+Scene parse_scene(const std::string& text, const std::string& path, const std::string& base_dir,
+                  const SceneOverrides& ov) {
   Scene scene;
   scene.file = path;
-  scene.text = buffer.str();
+  scene.text = text;
   YAML::Node doc;
   try {
     doc = YAML::Load(scene.text);
@@ -135,7 +140,7 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
 
   const YAML::Node shape_node = r.required(doc, "shape", "a scene file");
   if (!shape_node.IsScalar()) r.fail(shape_node, "'shape' is the path of a shape file");
-  const fs::path shape_path = fs::path(path).parent_path() / shape_node.Scalar();
+  const fs::path shape_path = fs::path(base_dir) / shape_node.Scalar();
   scene.shape = geometry::load_shape(shape_path.lexically_normal().string(), shape_set);
   const Table table(scene.shape.region);
 
@@ -166,7 +171,7 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
   const YAML::Node init = r.required(doc, "initial", "a scene file");
   r.expect_keys(init, {"microcanonical", "csv"}, "'initial'");
   if (const YAML::Node csv = init["csv"]) {
-    scene.initial_csv = (fs::path(path).parent_path() / csv.Scalar()).lexically_normal().string();
+    scene.initial_csv = (fs::path(base_dir) / csv.Scalar()).lexically_normal().string();
     scene.initial_states = read_initial_csv(scene.initial_csv, table);
     scene.particles = scene.initial_states.size();
   } else {

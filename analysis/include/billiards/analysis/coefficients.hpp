@@ -7,8 +7,13 @@
 #include <Eigen/Core>
 #include <nlohmann/json_fwd.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
+
+namespace billiards::dynamics {
+struct Scene;
+}
 
 namespace billiards::analysis {
 
@@ -57,5 +62,9 @@ double diffusion_g2(const geometry::Measures& m, const Drive& drive, double E);
 double constant_C(const geometry::Measures& m, const Drive& drive);
 
 Coefficients coefficients(const geometry::Measures& m, const Drive& drive, double E);
+
+/// The prediction for a scene: its coefficients at its initial energy, if the theory covers it
+/// (a periodic force and a microcanonical start).
+std::optional<Coefficients> prediction_of(const dynamics::Scene& scene);
 
 }  // namespace billiards::analysis
