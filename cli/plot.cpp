@@ -50,15 +50,14 @@ nlohmann::json loop_points(const geometry::Loop& loop) {
 nlohmann::json free_trajectory(const geometry::Region2& region, int collisions, std::uint64_t seed) {
   const dynamics::Table table(region);
   dynamics::ParticleRng rng(seed, 0);
-  auto s = dynamics::sample_microcanonical(table, 1.0, rng);
+  const auto s = dynamics::sample_microcanonical(table, 1.0, rng);
   nlohmann::json pts = nlohmann::json::array({{s.x.x(), s.x.y()}});
-  for (int k = 0; k < collisions; ++k) {
-    const auto hit = dynamics::collision(table, dynamics::FreeFlight{}, s);
-    if (!hit.found())
-      throw std::runtime_error(fmt::format("the trajectory escaped the region after {} collisions", k));
-    dynamics::bounce(dynamics::FreeFlight{}, s, hit);
-    pts.push_back({s.x.x(), s.x.y()});
-  }
+  const std::size_t made = dynamics::evolve(table, dynamics::FreeFlight{}, s, collisions,
+                                            [&](const dynamics::Hit&, const dynamics::State& after) {
+                                              pts.push_back({after.x.x(), after.x.y()});
+                                            });
+  if (made < std::size_t(collisions))
+    throw std::runtime_error(fmt::format("the trajectory escaped the region after {} collisions", made));
   return pts;
 }
 
