@@ -31,18 +31,10 @@ namespace fs = std::filesystem;
 /// thousands of edges is still drawn edge for edge.
 constexpr double arc_step = geometry::pi / 360;
 
-/// The loop as a closed polyline: each piece contributes its vertices up to, not including,
-/// its target, which is the next piece's source.
+/// The loop's outline (geometry::outline_of) as a JSON list of points.
 nlohmann::json loop_points(const geometry::Loop& loop) {
   nlohmann::json pts = nlohmann::json::array();
-  for (const auto& p : loop.pieces) {
-    const auto* arc = std::get_if<geometry::Arc>(&p);
-    const int n = arc ? std::max(4, int(std::ceil(std::abs(arc->sweep) / arc_step))) : 1;
-    for (int i = 0; i < n; ++i) {
-      const auto q = geometry::point_along(p, double(i) / n);
-      pts.push_back({q.x(), q.y()});
-    }
-  }
+  for (const auto& q : geometry::outline_of(loop, arc_step)) pts.push_back({q.x(), q.y()});
   return pts;
 }
 

@@ -250,6 +250,18 @@ PYBIND11_MODULE(billiards, m) {
       .def_property_readonly("parameters", [](const Shape& s) { return s.parameters; },
                              "Parameter values after overrides.")
       .def("info", &info, "Same as billiards.info(shape).")
+      .def("outline", [](const Shape& s, double arc_step) {
+             py::list loops;
+             for (const auto* loop : s.region.loops()) {
+               const auto pts = geometry::outline_of(*loop, arc_step);
+               std::vector<double> xy;
+               for (const auto& p : pts) xy.insert(xy.end(), {p.x(), p.y()});
+               loops.append(adopt(std::move(xy), {py::ssize_t(pts.size()), 2}));
+             }
+             return loops;
+           }, py::kw_only(), "arc_step"_a = geometry::pi / 360,
+           "The boundary for drawing: a closed polyline (n, 2) per loop, outer first (the vertices of "
+           "`billiard plot`; arcs get one every arc_step radians).")
       .def("__repr__", [](const Shape& s) { return fmt::format("<billiards.Shape '{}'>", s.region.name); });
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A shape, a force, particles and what to run (see load_scene).")

@@ -214,6 +214,20 @@ def test_trajectory_is_the_runs_particle(source):
         assert np.count_nonzero(times[1:] <= scene.time) == counts[i]
 
 
+@pytest.mark.parametrize("shape", ["clover", "sinai", "mushroom"])
+def test_outline_lies_on_the_boundary_and_encloses_the_area(source, shape):
+    shape = billiards.load_shape(source / "shapes" / f"{shape}.yaml")
+    info = shape.info()
+    loops = shape.outline()
+    assert len(loops) == 1 + info["holes"]
+    for xy in loops:
+        assert max(distance_to_boundary(p, info["pieces"]) for p in xy) < 1e-12
+    # Shoelace: the outer loop counter-clockwise, holes clockwise; chords of half a degree
+    # cut off a relative area of about (pi/360)^2/12 = 6e-6 of each arc's sector.
+    area = sum(0.5 * np.sum(xy[:, 0] * np.roll(xy[:, 1], -1) - np.roll(xy[:, 0], -1) * xy[:, 1]) for xy in loops)
+    assert area == pytest.approx(info["V"], rel=1e-4)
+
+
 def test_free_trajectory_in_a_square_reflects_specularly():
     square = billiards.load_shape({"boundary": {"polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]}})
     traj = billiards.trajectory(square, collisions=50, seed=3)
