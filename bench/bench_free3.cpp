@@ -1,10 +1,14 @@
-// Free 3-D flights: collisions per second on one core for the 3-D Sinai billiard and the
-// 1e5-triangle mesh, with two baselines in the same process:
-//   sinai (2-D)  — the 2-D kernels on shapes/sinai.yaml (bench_free's code path);
+// 3-D flights: collisions per second on one core for the 3-D Sinai billiard and the
+// 1e5-triangle mesh, free and under the paper's drive, with baselines in the same process:
+//   sinai (2-D)  — the 2-D kernels on shapes/sinai.yaml (bench_free's code path), free and
+//                  driven alike;
 //   CGAL AABB    — the mesh's collisions found by CGAL's AABB_tree::first_intersection (the
 //                  face just left skipped), instead of the toolkit's BVH and watertight test.
-// Usage: bench_free3 [collisions per shape, default 5e6]
+// Driven runs use the ensemble code of `billiard run` (64 particles interleaved 4 at a time,
+// one thread, flights not re-verified), F = 10 along (1, 1[, 1])/√d, ω = 320π, E = 1/2.
+// Usage: bench_free3 [free collisions per shape, default 5e6] [driven, default a tenth]
 #include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics3/table3.hpp"
 #include "billiards/geometry.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
@@ -93,6 +97,34 @@ std::pair<double, long> cgal_aabb(const geometry3::TriangleMesh& mesh, const geo
   return {n / seconds_since(start), escapes};
 }
 
+/// Collisions per second of the ensemble code on one thread: 64 particles for about
+/// `collisions` collisions in all.
+template <class Table, class Flight>
+double ensemble_rate(const Table& table, const Flight& flight, double mean_free_path, double collisions) {
+  dynamics::RunOptions opt;
+  opt.record_times = {collisions / 64 * mean_free_path};
+  const auto initial = dynamics::microcanonical(table, flight, 1.0, 1);
+  const auto start = std::chrono::steady_clock::now();
+  const auto res = dynamics::run_ensemble(table, flight, initial, opt, 64, 1);
+  if (res.escapes() > 0) fmt::print("  {} ESCAPES\n", res.escapes());
+  return res.collisions() / seconds_since(start);
+}
+
+constexpr double F = 10, omega = 320 * geometry::pi;
+
+double sinai2_driven(double collisions) {
+  const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/sinai.yaml");
+  const dynamics::Table table(shape.region);
+  const dynamics::PeriodicDriveFlight flight{dynamics::Vec2(F, F) / std::sqrt(2.0), omega, 0};
+  return ensemble_rate(table, flight, geometry::mean_free_path(geometry::measures_of(shape.region)), collisions);
+}
+
+double driven3(const geometry3::Region3& region, double collisions) {
+  const dynamics3::Table3 table(region);
+  const dynamics3::PeriodicDriveFlight3 flight{Vec3(F, F, F) / std::sqrt(3.0), omega, 0};
+  return ensemble_rate(table, flight, geometry::mean_free_path(geometry3::measures_of(region)), collisions);
+}
+
 double sinai2(double collisions) {
   const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/sinai.yaml");
   const dynamics::Table table(shape.region);
@@ -109,7 +141,10 @@ double sinai2(double collisions) {
 
 int main(int argc, char** argv) {
   const double n = argc > 1 ? std::atof(argv[1]) : 5e6;
+  const double n_driven = argc > 2 ? std::atof(argv[2]) : n / 10;
   fmt::print("sinai (2-D), toolkit: {:.2f} M collisions/s\n", sinai2(n) / 1e6);
+  const double driven2 = sinai2_driven(n_driven);
+  fmt::print("sinai (2-D), driven at 320 pi: {:.3f} M collisions/s\n", driven2 / 1e6);
   for (const char* name : {"sinai3", "bumpy-100k"}) {
     const auto shape = geometry3::load_shape3(fmt::format("{}/shapes/3d/{}.yaml", BILLIARDS_SOURCE_DIR, name));
     const auto [rate, escapes] = toolkit3(shape.region, n);
@@ -119,6 +154,9 @@ int main(int argc, char** argv) {
       fmt::print("{}, CGAL AABB_tree first_intersection: {:.3f} M collisions/s, {} escapes; toolkit / CGAL = {:.1f}\n",
                  name, cgal / 1e6, cgal_escapes, rate / cgal);
     }
+    const double driven = driven3(shape.region, n_driven);
+    fmt::print("{}, driven at 320 pi: {:.3f} M collisions/s; / free = {:.2f}; / 2-D sinai driven = {:.2f}\n", name,
+               driven / 1e6, driven / rate, driven / driven2);
   }
   return 0;
 }

@@ -84,14 +84,14 @@ nlohmann::json delta_stats(const std::vector<double>& dE) {
 }
 
 nlohmann::json fingerprint_of(const Scene& scene) {
-  return {{"scene_text", scene.text}, {"shape_parameters", scene.shape.parameters},
+  return {{"scene_text", scene.text}, {"shape_parameters", scene.shape_parameters()},
           {"particles", scene.particles}, {"record_times", scene.record_times},
           {"seed", scene.seed}, {"omega", scene.force.omega}, {"mass", scene.mass}};
 }
 
 template <class Flight>
 EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& args, double& seconds) {
-  const dynamics::Table table(scene.shape.region);
+  const auto table = dynamics::table_of<Flight>(scene);
   const auto opt = dynamics::run_options<Flight>(scene, args.verify);
   const auto initial = dynamics::initial_states(scene, table, flight);
   const std::size_t n = scene.particles, m = opt.record_times.size();
@@ -141,8 +141,9 @@ nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coeff
   nlohmann::json j = per_time.back();
   j.erase("t");
   j.update({{"scene", scene.file}, {"scene_text", scene.text}, {"command", command_line()},
-            {"shape", scene.shape.region.name}, {"shape_parameters", scene.shape.parameters},
-            {"force", scene.force.name()}, {"F", {scene.force.amplitude.x(), scene.force.amplitude.y()}},
+            {"dimension", scene.dimension}, {"shape", scene.shape_name()},
+            {"shape_parameters", scene.shape_parameters()}, {"force", scene.force.name()},
+            {"F", std::vector<double>(scene.force.amplitude.begin(), scene.force.amplitude.end())},
             {"omega", scene.force.omega}, {"mass", scene.mass}, {"E0", scene.energy},
             {"particles", scene.particles}, {"time", scene.time}, {"record_times", scene.record_times},
             {"seed", scene.seed}, {"threads", args.threads}, {"ranks", ranks().size()}, {"collisions", r.collisions()},
@@ -232,7 +233,7 @@ std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_i
   RunArgs args = args_in;
   if (args.threads <= 0) args.threads = omp_get_max_threads();
   fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
-             scene.shape.region.name, scene.force.name(), scene.time);
+             scene.shape_name(), scene.force.name(), scene.time);
   RunOutcome run{scene, analysis::prediction_of(scene), {}, {}};
   if (run.prediction) print_prediction(*run.prediction, scene.time);
   double seconds = 0;

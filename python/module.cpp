@@ -168,10 +168,10 @@ py::dict run(const std::shared_ptr<Scene>& scene_ptr, int threads, bool verify) 
   double seconds = 0;
   {
     py::gil_scoped_release unlocked;
-    const dynamics::Table table(scene.shape.region);
     const auto start = std::chrono::steady_clock::now();
     dynamics::with_flight(scene, [&](const auto& flight) {
       using Flight = std::decay_t<decltype(flight)>;
+      const auto table = dynamics::table_of<Flight>(scene);
       const auto opt = dynamics::run_options<Flight>(scene, verify);
       dynamics::run_particles(table, flight, dynamics::initial_states(scene, table, flight), opt, 0, n, threads,
                               result);
@@ -194,31 +194,32 @@ py::dict run(const std::shared_ptr<Scene>& scene_ptr, int threads, bool verify) 
 }
 
 /// The start and the state just after each bounce: times (K+1), positions and velocities
-/// (K+1, 2), walls (K+1, the start has −1).  Fewer rows if the particle escaped.
-template <class Flight>
-py::dict trace(const dynamics::Table& table, const Flight& flight, typename Flight::State s, std::size_t collisions) {
-  std::vector<double> t{s.t}, x{s.x.x(), s.x.y()}, v{s.v.x(), s.v.y()};
+/// (K+1, d), walls (K+1, the start has −1).  Fewer rows if the particle escaped.
+template <class Table, class Flight>
+py::dict trace(const Table& table, const Flight& flight, typename Flight::State s, std::size_t collisions) {
+  const auto d = py::ssize_t(s.x.size());
+  std::vector<double> t{s.t}, x(s.x.data(), s.x.data() + d), v(s.v.data(), s.v.data() + d);
   std::vector<int> walls{-1};
   std::size_t made = 0;
   {
     py::gil_scoped_release unlocked;
-    made = dynamics::evolve(table, flight, s, collisions, [&](const dynamics::Hit& hit, const auto& after) {
+    made = dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto& after) {
       t.push_back(after.t);
-      x.insert(x.end(), {after.x.x(), after.x.y()});
-      v.insert(v.end(), {after.v.x(), after.v.y()});
+      x.insert(x.end(), after.x.data(), after.x.data() + d);
+      v.insert(v.end(), after.v.data(), after.v.data() + d);
       walls.push_back(hit.wall);
     });
   }
   const auto rows = py::ssize_t(t.size());
-  return py::dict("times"_a = adopt(std::move(t), {rows}), "positions"_a = adopt(std::move(x), {rows, 2}),
-                  "velocities"_a = adopt(std::move(v), {rows, 2}), "walls"_a = adopt(std::move(walls), {rows}),
+  return py::dict("times"_a = adopt(std::move(t), {rows}), "positions"_a = adopt(std::move(x), {rows, d}),
+                  "velocities"_a = adopt(std::move(v), {rows, d}), "walls"_a = adopt(std::move(walls), {rows}),
                   "escaped"_a = made < collisions);
 }
 
 py::dict scene_trajectory(const Scene& scene, std::size_t collisions, std::size_t particle) {
   if (particle >= scene.particles) throw py::index_error("particle index beyond the scene's particles");
-  const dynamics::Table table(scene.shape.region);
   return dynamics::with_flight(scene, [&](const auto& flight) {
+    const auto table = dynamics::table_of<std::decay_t<decltype(flight)>>(scene);
     return trace(table, flight, dynamics::initial_states(scene, table, flight)(particle), collisions);
   });
 }
@@ -267,7 +268,11 @@ PYBIND11_MODULE(billiards, m) {
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A shape, a force, particles and what to run (see load_scene).")
       .def_property_readonly("file", [](const Scene& s) { return s.file; })
       .def_property_readonly("text", [](const Scene& s) { return s.text; }, "The scene's YAML text.")
-      .def_property_readonly("shape", [](const Scene& s) { return std::make_shared<Shape>(s.shape); })
+      .def_property_readonly("dimension", [](const Scene& s) { return s.dimension; })
+      .def_property_readonly("shape", [](const Scene& s) {
+        if (s.dimension != 2) throw py::value_error("the Python module has no 3-D Shape yet");
+        return std::make_shared<Shape>(s.shape);
+      }, "The scene's 2-D Shape.")
       .def_property_readonly("mass", [](const Scene& s) { return s.mass; })
       .def_property_readonly("energy", [](const Scene& s) { return s.energy; },
                              "Initial energy of the microcanonical ensemble (0 with an initial-condition file).")
@@ -281,7 +286,7 @@ PYBIND11_MODULE(billiards, m) {
       .def_property_readonly("output_dir", [](const Scene& s) { return s.output_dir; })
       .def("__repr__", [](const Scene& s) {
         return fmt::format("<billiards.Scene '{}': {} particles on '{}', force {}, t = 0 .. {}>", s.file, s.particles,
-                           s.shape.region.name, s.force.name(), s.time);
+                           s.shape_name(), s.force.name(), s.time);
       });
 
   m.def("load_shape", &load_shape, "source"_a, py::kw_only(), "set"_a = py::none(), "name"_a = "shape dict",

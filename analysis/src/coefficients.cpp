@@ -92,10 +92,10 @@ void to_json(nlohmann::json& j, const Coefficients& c) {
 std::optional<Coefficients> prediction_of(const dynamics::Scene& scene) {
   if (scene.force.kind != dynamics::Force::Kind::periodic || scene.energy <= 0) return std::nullopt;
   Drive drive;
-  drive.F = Eigen::Vector2d(scene.force.amplitude);
+  drive.F = scene.force.amplitude;
   drive.omega = scene.force.omega;
   drive.mass = scene.mass;
-  return coefficients(geometry::measures_of(scene.shape.region), drive, scene.energy);
+  return coefficients(scene.measures(), drive, scene.energy);
 }
 
 }  // namespace billiards::analysis

@@ -1,6 +1,7 @@
 #include "billiards/dynamics/scene.hpp"
 
 #include "billiards/dynamics/table.hpp"
+#include "billiards/dynamics3/table3.hpp"
 #include "billiards/geometry/yaml_reader.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -28,21 +29,23 @@ namespace fs = std::filesystem;
 
 using SceneReader = YamlReader;
 
-Force read_force(const SceneReader& r, const YAML::Node& n) {
+Force read_force(const SceneReader& r, const YAML::Node& n, int dimension) {
   Force f;
+  f.amplitude = Eigen::VectorXd::Zero(dimension);
   if (!n || (n.IsScalar() && n.Scalar() == "none")) return f;
   r.expect_keys(n, {"constant", "periodic"}, "'force'");
   if (n.size() != 1) r.fail(n, "'force' is one of: none, constant, periodic");
   if (const YAML::Node c = n["constant"]) {
     r.expect_keys(c, {"amplitude"}, "a constant force");
+    if (dimension == 3) r.fail(c, "a constant force is not implemented in 3-D (periodic and none are)");
     f.kind = Force::Kind::constant;
-    f.amplitude = r.point(r.required(c, "amplitude", "a constant force"));
+    f.amplitude = r.vector(r.required(c, "amplitude", "a constant force"), dimension);
     return f;
   }
   const YAML::Node p = n["periodic"];
   r.expect_keys(p, {"amplitude", "omega", "phase"}, "a periodic force");
   f.kind = Force::Kind::periodic;
-  f.amplitude = r.point(r.required(p, "amplitude", "a periodic force"));
+  f.amplitude = r.vector(r.required(p, "amplitude", "a periodic force"), dimension);
   f.omega = r.positive(r.required(p, "omega", "a periodic force"), "omega");
   f.phase = p["phase"] ? r.number(p["phase"]) : 0.0;
   return f;
@@ -74,10 +77,14 @@ std::vector<double> read_record(const SceneReader& r, const YAML::Node& n, doubl
   return t;
 }
 
-std::vector<State> read_initial_csv(const std::string& path, const Table& table) {
+/// One particle per line: x, y, vx, vy in 2-D; x, y, z, vx, vy, vz in 3-D (`S` is the state
+/// type of the dimension, `inside` the table's point-in-region test).
+template <class S, class Inside>
+std::vector<S> read_initial_csv(const std::string& path, Inside inside) {
+  constexpr int d = decltype(S::x)::RowsAtCompileTime;
   std::ifstream in(path);
   if (!in) throw InputError(path, 0, "cannot open initial-condition file");
-  std::vector<State> states;
+  std::vector<S> states;
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
@@ -85,11 +92,14 @@ std::vector<State> read_initial_csv(const std::string& path, const Table& table)
     if (line.empty() || line[0] == '#' || (number == 1 && line.find_first_of("xXvV") == 0)) continue;
     std::replace(line.begin(), line.end(), ',', ' ');
     std::istringstream fields(line);
-    State s;
+    S s;
     std::string extra;
-    if (!(fields >> s.x.x() >> s.x.y() >> s.v.x() >> s.v.y()) || (fields >> extra))
-      throw InputError(path, number, "expected four numbers: x, y, vx, vy");
-    if (!table.contains(s.x)) throw InputError(path, number, "particle is outside the region");
+    bool read = true;
+    for (int k = 0; k < 2 * d && read; ++k) read = bool(fields >> (k < d ? s.x[k] : s.v[k - d]));
+    if (!read || (fields >> extra))
+      throw InputError(path, number, d == 2 ? "expected four numbers: x, y, vx, vy"
+                                            : "expected six numbers: x, y, z, vx, vy, vz");
+    if (!inside(s.x)) throw InputError(path, number, "particle is outside the region");
     if (!(s.v.squaredNorm() > 0)) throw InputError(path, number, "particle has zero velocity");
     states.push_back(s);
   }
@@ -98,6 +108,10 @@ std::vector<State> read_initial_csv(const std::string& path, const Table& table)
 }
 
 }  // namespace
+
+geometry::Measures Scene::measures() const {
+  return dimension == 3 ? geometry3::measures_of(shape3.region) : geometry::measures_of(shape.region);
+}
 
 Scene load_scene(const std::string& path, const SceneOverrides& ov) {
   std::ifstream in(path);
@@ -140,12 +154,15 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
 
   const YAML::Node shape_node = r.required(doc, "shape", "a scene file");
   if (!shape_node.IsScalar()) r.fail(shape_node, "'shape' is the path of a shape file");
-  const fs::path shape_path = fs::path(base_dir) / shape_node.Scalar();
-  scene.shape = geometry::load_shape(shape_path.lexically_normal().string(), shape_set);
-  const Table table(scene.shape.region);
+  const std::string shape_path = (fs::path(base_dir) / shape_node.Scalar()).lexically_normal().string();
+  scene.dimension = geometry3::shape_dimension(shape_path);
+  if (scene.dimension == 3)
+    scene.shape3 = geometry3::load_shape3(shape_path, shape_set);
+  else
+    scene.shape = geometry::load_shape(shape_path, shape_set);
 
   scene.mass = doc["mass"] ? r.positive(doc["mass"], "mass") : 1.0;
-  scene.force = read_force(r, doc["force"]);
+  scene.force = read_force(r, doc["force"], scene.dimension);
   if (ov.omega) {
     if (scene.force.kind != Force::Kind::periodic)
       throw InputError(path, 0, "--omega needs a periodic force in the scene");
@@ -172,8 +189,16 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   r.expect_keys(init, {"microcanonical", "csv"}, "'initial'");
   if (const YAML::Node csv = init["csv"]) {
     scene.initial_csv = (fs::path(base_dir) / csv.Scalar()).lexically_normal().string();
-    scene.initial_states = read_initial_csv(scene.initial_csv, table);
-    scene.particles = scene.initial_states.size();
+    if (scene.dimension == 3) {
+      const dynamics3::Table3 table(scene.shape3.region);
+      scene.initial_states3 = read_initial_csv<dynamics3::State3>(scene.initial_csv,
+                                                                  [&](const auto& x) { return table.contains(x); });
+      scene.particles = scene.initial_states3.size();
+    } else {
+      const Table table(scene.shape.region);
+      scene.initial_states = read_initial_csv<State>(scene.initial_csv, [&](const auto& x) { return table.contains(x); });
+      scene.particles = scene.initial_states.size();
+    }
   } else {
     const YAML::Node mc = r.required(init, "microcanonical", "'initial'");
     r.expect_keys(mc, {"energy"}, "'microcanonical'");
@@ -181,7 +206,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
     scene.particles = r.count(r.required(run, "particles", "'run'"), "run.particles");
   }
   if (ov.particles) {
-    if (!scene.initial_states.empty() && *ov.particles > scene.initial_states.size())
+    if (!scene.initial_csv.empty() && *ov.particles > scene.particles)
       throw InputError("--particles", 0, "more particles than the initial-condition file holds");
     if (*ov.particles == 0) throw InputError("--particles", 0, "need at least one particle");
     scene.particles = *ov.particles;

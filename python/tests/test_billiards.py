@@ -106,7 +106,7 @@ def clover_scene_dict():
             "run": {"particles": 20000, "time": 20, "record": {"every": 1}, "seed": 1}}
 
 
-@pytest.mark.parametrize("scene_name", ["clover-driven", "clover-free"])
+@pytest.mark.parametrize("scene_name", ["clover-driven", "clover-free", "sinai3-driven"])
 def test_run_equals_cli_energies_byte_for_byte(source, tmp_path, scene_name):
     scene_file = source / "scenes" / f"{scene_name}.yaml"
     out = tmp_path / "run"
@@ -203,6 +203,19 @@ def test_trajectory_points_lie_on_the_boundary(source, scene_name):
         assert np.allclose(speed, 1, rtol=1e-14)
     else:
         assert not np.allclose(speed, 1, rtol=1e-3)  # the drive changes the speed at each bounce
+
+
+def test_trajectory_in_3d_hits_the_walls(source):
+    """The 3-D Sinai billiard: the unit cube [-1/2, 1/2]^3 minus a ball of radius 1/4 at its centre."""
+    scene = billiards.load_scene(source / "scenes" / "sinai3-driven.yaml")
+    traj = billiards.trajectory(scene, collisions=100, particle=2)
+    x = traj["positions"][1:]
+    assert x.shape == (100, 3) and not traj["escaped"]
+    on_cube = np.abs(np.max(np.abs(x), axis=1) - 0.5) < 1e-12   # L = 1
+    on_ball = np.abs(np.linalg.norm(x, axis=1) - 0.25) < 1e-12  # R = 1/4
+    assert (on_cube | on_ball).all() and on_cube.any() and on_ball.any()
+    with pytest.raises(ValueError, match="3-D"):
+        scene.shape
 
 
 def test_trajectory_is_the_runs_particle(source):

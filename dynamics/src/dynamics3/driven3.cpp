@@ -43,6 +43,28 @@ double PeriodicDriveFlight3::exit_time(const State& s, const PlaneWall& w, doubl
   return tau == never ? never : s.t + tau;
 }
 
+double PeriodicDriveFlight3::exit_time(const State& s, const TriangleWall& w, double t_end) const {
+  const Quiver3 q(*this, s);
+  // The particle stays within δ of the guiding segment, along which each edge's signed
+  // distance is linear: when both ends are beyond the same edge by more than δ and the slack,
+  // no point of the window is within the widened span.
+  auto passes = [&](double tau, double end) {
+    const Vec3 a = q.guide(tau), b = q.guide(end);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 pa = a - w.p[k], pb = b - w.p[k];
+      const double da = w.edge_normal[k].dot(pa), db = w.edge_normal[k].dot(pb);
+      const double rounding = 8 * dynamics::scan::eps<double> * (pa.cwiseAbs().sum() + pb.cwiseAbs().sum());
+      const double margin = w.slack + q.delta + rounding;
+      if (da > margin && db > margin) return true;
+    }
+    return false;
+  };
+  auto in_span = [&](const Vec3& x) { return w.within_span(x); };
+  const double tau =
+      dynamics::scan::driven_exit_through_plane(q, w.normal, w.p[0], w.slack, t_end - s.t, passes, in_span);
+  return tau == never ? never : s.t + tau;
+}
+
 double PeriodicDriveFlight3::exit_time(const State& s, const SphereWall& w, double t_end) const {
   const double tau = dynamics::scan::driven_exit_through_sphere(Quiver3(*this, s), w.center, w.radius, w.focusing,
                                                                 w.slack, t_end - s.t, no_window_passed, everywhere);

@@ -1,6 +1,8 @@
 // 3-D tables: walls from a Region3, the triangle BVH, collision search, reflection, sampling.
 #include "billiards/dynamics3/table3.hpp"
 
+#include "billiards/dynamics/certified_scan.hpp"
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -53,18 +55,19 @@ int Bvh::build(const std::vector<TriangleWall>& tris, int first, int count, doub
 
 namespace {
 
-/// Parameter interval in which the ray x + τ v is inside the box, intersected with [0, t_max].
-/// A zero velocity component is replaced by a tiny one of the same role: the slab then spans
-/// everything (particle between the planes) or nothing, with no 0·∞.
+/// Parameter interval in which the ray x + τ v is inside the box (grown by `pad`), intersected
+/// with [0, t_max].  A zero velocity component is replaced by a tiny one of the same role: the
+/// slab then spans everything (particle between the planes) or nothing, with no 0·∞.
 struct SlabRay {
   Vec3 x, inv;
-  explicit SlabRay(const State3& s) : x(s.x) {
-    for (int k = 0; k < 3; ++k) inv[k] = 1 / (s.v[k] != 0 ? s.v[k] : 1e-300);
+  double pad;
+  SlabRay(const Vec3& origin, const Vec3& v, double pad_) : x(origin), pad(pad_) {
+    for (int k = 0; k < 3; ++k) inv[k] = 1 / (v[k] != 0 ? v[k] : 1e-300);
   }
   bool hits(const Bvh::Node& n, double t_max, double& t_in) const {
     double lo = 0, hi = t_max;
     for (int k = 0; k < 3; ++k) {
-      double a = (n.lo[k] - x[k]) * inv[k], b = (n.hi[k] - x[k]) * inv[k];
+      double a = (n.lo[k] - pad - x[k]) * inv[k], b = (n.hi[k] + pad - x[k]) * inv[k];
       if (a > b) std::swap(a, b);
       lo = std::max(lo, a);
       hi = std::min(hi, b);
@@ -83,6 +86,7 @@ Table3::Table3(const Region3& region) : region_(region) {
   lo_ = m.bbox_lo;
   hi_ = m.bbox_hi;
   const double slack = slack_ulps * std::max(lo_.cwiseAbs().maxCoeff(), hi_.cwiseAbs().maxCoeff());
+  slack_ = slack;
   const auto sphere = [&](const Ball& b, bool focusing) {
     spheres_.push_back({b.center, b.radius, b.radius * b.radius, focusing, slack});
   };
@@ -101,10 +105,13 @@ Table3::Table3(const Region3& region) : region_(region) {
   triangles_ = std::move(sorted);
 }
 
-void Table3::triangles_hit(const State3& s, Hit3& best) const {
+/// Walks the BVH nearest box first along the ray `origin + τ dir` (τ after `t0`), boxes grown
+/// by `pad`, and keeps in `best` the earliest exit time `exit(triangle)` found.
+template <class Exit>
+void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best,
+                              Exit exit) const {
   if (triangles_.empty()) return;
-  const Ray ray(s.x, s.v);
-  const SlabRay slab(s);
+  const SlabRay slab(origin, dir, pad);
   const auto& nodes = bvh_.nodes();
   const int base = int(planes_.size());
   struct Entry {
@@ -114,14 +121,14 @@ void Table3::triangles_hit(const State3& s, Hit3& best) const {
   Entry stack[64];
   int top = 0;
   double t_in;
-  if (slab.hits(nodes[0], best.t - s.t, t_in)) stack[top++] = {0, t_in};
+  if (slab.hits(nodes[0], best.t - t0, t_in)) stack[top++] = {0, t_in};
   while (top > 0) {
     const Entry e = stack[--top];
-    if (s.t + e.t_in > best.t) continue;  // a nearer hit was found since it was pushed
+    if (t0 + e.t_in > best.t) continue;  // a nearer hit was found since it was pushed
     const Bvh::Node& n = nodes[e.node];
     if (n.count > 0) {
       for (int i = n.first; i < n.first + n.count; ++i) {
-        const double t = exit_time(s, ray, triangles_[i], best.t);
+        const double t = exit(triangles_[i], best.t);
         if (t < best.t) best.t = t, best.wall = base + i;
       }
       continue;
@@ -130,8 +137,8 @@ void Table3::triangles_hit(const State3& s, Hit3& best) const {
     // shrinks early.
     const int left = e.node + 1;
     double t_left, t_right;
-    const bool hit_left = slab.hits(nodes[left], best.t - s.t, t_left);
-    const bool hit_right = slab.hits(nodes[n.right], best.t - s.t, t_right);
+    const bool hit_left = slab.hits(nodes[left], best.t - t0, t_left);
+    const bool hit_right = slab.hits(nodes[n.right], best.t - t0, t_right);
     if (hit_left && hit_right && t_left <= t_right) {
       stack[top++] = {n.right, t_right};
       stack[top++] = {left, t_left};
@@ -153,7 +160,9 @@ Hit3 Table3::collision(const State3& s, double t_end) const {
     const double t = exit_time(s, planes_[w], best.t);
     if (t < best.t) best.t = t, best.wall = w;
   }
-  triangles_hit(s, best);
+  const Ray ray(s.x, s.v);
+  search_triangles(s.x, s.v, 0, s.t, best,
+                   [&](const TriangleWall& w, double t_end) { return exit_time(s, ray, w, t_end); });
   const int base = int(planes_.size() + triangles_.size());
   for (int w = 0; w < int(spheres_.size()); ++w) {
     const double t = exit_time(s, spheres_[w], best.t);
@@ -166,17 +175,23 @@ Hit3 Table3::collision(const State3& s, double t_end) const {
 }
 
 Hit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end) const {
-  if (!triangles_.empty())
-    throw std::invalid_argument("driven flights in 3-D are implemented against planes and spheres, not meshes");
   Hit3 best;
   best.t = t_end;
   for (int w = 0; w < int(planes_.size()); ++w) {
     const double t = flight.exit_time(s, planes_[w], best.t);
     if (t < best.t) best.t = t, best.wall = w;
   }
+  if (!triangles_.empty()) {
+    // The particle stays within δ = |F|/(mω²) of its guiding line: boxes grown by δ (and the
+    // scan's rounding band) along that line hold every triangle it can cross.
+    const dynamics::scan::Quiver<PeriodicDriveFlight3, DrivenState3> q(flight, s);
+    search_triangles(q.g0, q.u, q.delta + 2 * slack_, s.t, best,
+                     [&](const TriangleWall& w, double t) { return flight.exit_time(s, w, t); });
+  }
+  const int base = int(planes_.size() + triangles_.size());
   for (int w = 0; w < int(spheres_.size()); ++w) {
     const double t = flight.exit_time(s, spheres_[w], best.t);
-    if (t < best.t) best.t = t, best.wall = int(planes_.size()) + w;
+    if (t < best.t) best.t = t, best.wall = base + w;
   }
   if (!best.found()) return best;
   best.point = flight.advance(s, best.t).x;
@@ -192,9 +207,7 @@ Vec3 Table3::normal_at(int wall, const Vec3& x) const {
 }
 
 void bounce(State3& s, const Hit3& hit, double v2) {
-  s.x = hit.point;
-  s.t = hit.t;
-  s.v -= 2 * s.v.dot(hit.normal) * hit.normal;
+  bounce(FreeFlight3{}, s, hit);
   s.v *= std::sqrt(v2 / s.v.squaredNorm());
 }
 

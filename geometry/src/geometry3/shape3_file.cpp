@@ -33,10 +33,7 @@ class Reader3 {
   }
 
  private:
-  Vec3 vec(const YAML::Node& n) const {
-    if (!n.IsSequence() || n.size() != 3) r_.fail(n, "expected a vector [x, y, z]");
-    return {r_.number(n[0]), r_.number(n[1]), r_.number(n[2])};
-  }
+  Vec3 vec(const YAML::Node& n) const { return r_.vector(n, 3); }
 
   std::vector<Plane> box(const YAML::Node& n) const {
     r_.expect_keys(n, {"min", "max"}, "a box");

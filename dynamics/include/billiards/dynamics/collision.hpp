@@ -63,8 +63,8 @@ inline Vec2T<Real> reflect(const Vec2T<Real>& v, const Vec2T<Real>& n) {
 /// Rescales v to the speed² `v2`.  Flights that conserve energy restore it after every bounce
 /// against the value at the start, never against the previous bounce, so rounding cannot
 /// accumulate into a drift over 10⁹ bounces.
-template <class Real>
-inline void restore_speed(Vec2T<Real>& v, const Real& v2) {
+template <class Real, int D>
+inline void restore_speed(Eigen::Matrix<Real, D, 1>& v, const Real& v2) {
   using std::sqrt;
   v *= Real(sqrt(v2 / v.squaredNorm()));
 }
@@ -80,9 +80,10 @@ void bounce(const Flight& flight, typename Flight::State& s, const BasicHit<type
 /// Follows the particle from `s` through its next `collisions` bounces (fewer if it meets no
 /// wall: an escape), calling visit(hit, state) with the state just after each bounce;
 /// energy-conserving flights restore the speed after every bounce.  Returns the bounces made.
-template <class Flight, class Visit>
-std::size_t evolve(const BasicTable<typename Flight::Scalar>& table, const Flight& flight,
-                   typename Flight::State s, std::size_t collisions, Visit&& visit) {
+/// Any table (2-D or dynamics3's): `collision` and `bounce` are found by argument lookup.
+template <class TableT, class Flight, class Visit>
+std::size_t evolve(const TableT& table, const Flight& flight, typename Flight::State s, std::size_t collisions,
+                   Visit&& visit) {
   const auto v2 = s.v.squaredNorm();
   for (std::size_t k = 0; k < collisions; ++k) {
     const auto hit = collision(table, flight, s);

@@ -38,10 +38,12 @@ double kinetic_energy(const State& s, double mass) { return 0.5 * mass * s.v.squ
 
 /// One particle's run, a collision at a time: records its energy at each record time into
 /// `energies` (NaN after an escape).  Flights are searched up to the last record time only.
-template <class Flight>
+/// `TableT` is a 2-D table (table.hpp) or a 3-D one (dynamics3/table3.hpp): the verbs
+/// `collision`, `bounce` and `sample_microcanonical` are found for either by argument lookup.
+template <class Flight, class TableT = dynamics::Table>
 class Trajectory {
  public:
-  Trajectory(const Table& table, const Flight& flight, typename Flight::State s, const RunOptions& opt,
+  Trajectory(const TableT& table, const Flight& flight, typename Flight::State s, const RunOptions& opt,
              double* energies)
       : table_(&table), flight_(&flight), opt_(&opt), s_(s), energies_(energies),
         v2_(s.v.squaredNorm()), t_final_(opt.record_times.empty() ? s.t : opt.record_times.back()) {}
@@ -53,8 +55,8 @@ class Trajectory {
     if (k_ == n) return false;
     // A straight flight costs the same whatever the horizon: search without one, so that a
     // particle that meets no wall at all is caught as an escape at once.
-    const double horizon = std::is_same_v<Flight, FreeFlight> ? never : t_final_;
-    const Hit hit = collision(*table_, *flight_, s_, horizon);
+    const double horizon = is_straight<Flight> ? never : t_final_;
+    const auto hit = collision(*table_, *flight_, s_, horizon);
     const double t_next = hit.found() ? hit.t : never;
     for (; k_ < n && times[k_] <= t_next; ++k_) {
       const auto r = flight_->advance(s_, times[k_]);
@@ -80,7 +82,7 @@ class Trajectory {
     for (; k_ < opt_->record_times.size(); ++k_) energies_[k_] = std::nan("");
     return false;
   }
-  const Table* table_;
+  const TableT* table_;
   const Flight* flight_;
   const RunOptions* opt_;
   typename Flight::State s_;
@@ -92,10 +94,10 @@ class Trajectory {
 };
 
 /// Runs one particle to the end.
-template <class Flight>
-ParticleLog simulate(const Table& table, const Flight& flight, typename Flight::State s,
+template <class Flight, class TableT>
+ParticleLog simulate(const TableT& table, const Flight& flight, typename Flight::State s,
                      const RunOptions& opt, double* energies) {
-  Trajectory<Flight> run(table, flight, s, opt, energies);
+  Trajectory<Flight, TableT> run(table, flight, s, opt, energies);
   while (run.step()) {
   }
   return run.log();
@@ -120,8 +122,8 @@ inline constexpr std::size_t interleaved_particles = 4;
 
 /// Runs particles [first, last) of an ensemble.  `initial(i)` gives particle i's state (it
 /// must depend on i only); `progress(done)` is called from one thread now and then.
-template <class Flight, class Initial>
-void run_particles(const Table& table, const Flight& flight, const Initial& initial,
+template <class Flight, class TableT, class Initial>
+void run_particles(const TableT& table, const Flight& flight, const Initial& initial,
                    const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                    EnsembleResult& out, const std::function<void(std::size_t)>& progress = {}) {
   const std::size_t m = opt.record_times.size();
@@ -131,7 +133,7 @@ void run_particles(const Table& table, const Flight& flight, const Initial& init
   for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(batches); ++b) {
     const std::size_t lo = first + std::size_t(b) * interleaved_particles;
     const std::size_t hi = std::min(last, lo + interleaved_particles);
-    std::vector<Trajectory<Flight>> runs;
+    std::vector<Trajectory<Flight, TableT>> runs;
     for (std::size_t i = lo; i < hi; ++i) runs.emplace_back(table, flight, initial(i), opt, &out.energies[i * m]);
     std::size_t active = runs.size();
     while (active > 0) {
@@ -146,8 +148,8 @@ void run_particles(const Table& table, const Flight& flight, const Initial& init
 }
 
 /// Runs a whole ensemble of `particles` particles.
-template <class Flight, class Initial>
-EnsembleResult run_ensemble(const Table& table, const Flight& flight, const Initial& initial, const RunOptions& opt,
+template <class Flight, class TableT, class Initial>
+EnsembleResult run_ensemble(const TableT& table, const Flight& flight, const Initial& initial, const RunOptions& opt,
                             std::size_t particles, int threads) {
   EnsembleResult result;
   result.energies.resize(particles * opt.record_times.size());
@@ -158,8 +160,8 @@ EnsembleResult run_ensemble(const Table& table, const Flight& flight, const Init
 
 /// Initial conditions of a microcanonical ensemble at the given speed: particle i is drawn from
 /// ParticleRng(seed, i).
-template <class Flight>
-auto microcanonical(const Table& table, const Flight& flight, double speed, std::uint64_t seed) {
+template <class Flight, class TableT>
+auto microcanonical(const TableT& table, const Flight& flight, double speed, std::uint64_t seed) {
   return [&table, flight, speed, seed](std::size_t i) {
     ParticleRng rng(seed, i);
     return flight.start(sample_microcanonical(table, speed, rng));

@@ -23,6 +23,7 @@
 #include "billiards/dynamics/walls.hpp"
 
 #include <limits>
+#include <type_traits>
 
 namespace billiards::dynamics {
 
@@ -47,5 +48,10 @@ struct BasicFreeFlight {
   Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
 };
 using FreeFlight = BasicFreeFlight<double>;
+
+/// Does the flight model move in straight lines?  (Their search costs the same with or without
+/// a horizon; dynamics3 adds its free flight.)
+template <class Flight>
+inline constexpr bool is_straight = std::is_same_v<Flight, BasicFreeFlight<typename Flight::Scalar>>;
 
 }  // namespace billiards::dynamics

@@ -3,8 +3,11 @@
 #pragma once
 
 #include "billiards/dynamics/state.hpp"
+#include "billiards/dynamics3/walls3.hpp"
 #include "billiards/geometry/expression.hpp"
+#include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/shape_file.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
 
 #include <cstdint>
 #include <optional>
@@ -18,20 +21,25 @@ namespace billiards::dynamics {
 struct Force {
   enum class Kind { none, constant, periodic };
   Kind kind = Kind::none;
-  Vec2 amplitude = Vec2::Zero();  // F
+  Eigen::VectorXd amplitude = Eigen::VectorXd::Zero(2);  // F (the scene's dimension)
   double omega = 0;               // ω (periodic only)
   double phase = 0;               // (periodic only)
   const char* name() const;
 };
 
+/// A scene in 2-D or 3-D: `dimension` says which of `shape`/`shape3` and
+/// `initial_states`/`initial_states3` it uses.
 struct Scene {
   std::string file;            // the scene file
   std::string text;            // its text, copied into summary.json
-  geometry::Shape shape;
+  int dimension = 2;           // the shape file's
+  geometry::Shape shape;       // 2-D
+  geometry3::Shape3 shape3;    // 3-D
   double mass = 1;
-  /// Microcanonical ensemble at `energy`, unless `initial_states` were read from a CSV file.
+  /// Microcanonical ensemble at `energy`, unless the initial states were read from a CSV file.
   double energy = 0;
-  std::vector<State> initial_states;
+  std::vector<State> initial_states;                // 2-D
+  std::vector<dynamics3::State3> initial_states3;   // 3-D
   std::string initial_csv;
   Force force;
   std::size_t particles = 0;
@@ -39,6 +47,13 @@ struct Scene {
   std::vector<double> record_times;  // increasing, last = time
   std::uint64_t seed = 1;
   std::string output_dir;
+
+  // The shape's, in either dimension.
+  const std::string& shape_name() const { return dimension == 3 ? shape3.region.name : shape.region.name; }
+  const std::map<std::string, double>& shape_parameters() const {
+    return dimension == 3 ? shape3.parameters : shape.parameters;
+  }
+  geometry::Measures measures() const;
 };
 
 /// Command-line overrides of a scene.

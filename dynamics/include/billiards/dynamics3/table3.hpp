@@ -48,16 +48,23 @@ class Table3 {
   /// The first wall the straight flight from `s` leaves the region through, before `t_end`.
   /// For a particle inside the region and t_end = never, found() == false means an escape.
   Hit3 collision(const State3& s, double t_end = never) const;
-  /// The same for the paper's drive (planes and spheres; throws std::invalid_argument for a
-  /// table with a mesh: driven flights against triangles are not implemented yet).
+  /// The same for the paper's drive (the BVH walked along the guiding line, boxes grown by the
+  /// oscillation's amplitude |F|/(mω²)).
   Hit3 collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end = never) const;
+  /// Is x in the closed region (the independent point-in-region test of geometry3)?
+  bool contains(const Vec3& x) const { return geometry3::contains(region_, x); }
+  /// The walls, in the order of Hit3::wall.
+  const std::vector<PlaneWall>& planes() const { return planes_; }
+  const std::vector<TriangleWall>& triangles() const { return triangles_; }
+  const std::vector<SphereWall>& spheres() const { return spheres_; }
   const geometry3::Region3& region() const { return region_; }
   std::size_t wall_count() const { return planes_.size() + triangles_.size() + spheres_.size(); }
   const Vec3& lo() const { return lo_; }  // bounding box
   const Vec3& hi() const { return hi_; }
 
  private:
-  void triangles_hit(const State3& s, Hit3& best) const;
+  template <class Exit>
+  void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const;
   Vec3 normal_at(int wall, const Vec3& x) const;
 
   const geometry3::Region3& region_;
@@ -66,6 +73,7 @@ class Table3 {
   std::vector<SphereWall> spheres_;
   Bvh bvh_;
   Vec3 lo_, hi_;
+  double slack_ = 0;
 };
 
 /// Specular reflection at the hit, restoring the speed² `v2` of the particle's start (so that
@@ -74,6 +82,22 @@ void bounce(State3& s, const Hit3& hit, double v2);
 
 /// Moves the driven particle to the hit and reflects it there (its energy changes in flight).
 void bounce(const PeriodicDriveFlight3& flight, DrivenState3& s, const Hit3& hit);
+
+// The verbs of dynamics/collision.hpp for 3-D tables, so that the ensemble code
+// (dynamics/ensemble.hpp) runs 3-D flights unchanged.
+inline Hit3 collision(const Table3& table, const FreeFlight3&, const State3& s, double t_end = never) {
+  return table.collision(s, t_end);
+}
+inline Hit3 collision(const Table3& table, const PeriodicDriveFlight3& flight, const DrivenState3& s,
+                      double t_end = never) {
+  return table.collision(flight, s, t_end);
+}
+/// Moves the free particle to the hit and reflects it (the ensemble restores its speed).
+inline void bounce(const FreeFlight3&, State3& s, const Hit3& hit) {
+  s.x = hit.point;
+  s.t = hit.t;
+  s.v -= 2 * s.v.dot(hit.normal) * hit.normal;
+}
 
 /// Position uniform in the region (rejection from the bounding box), velocity isotropic.
 State3 sample_microcanonical(const Table3& table, double speed, dynamics::ParticleRng& rng);

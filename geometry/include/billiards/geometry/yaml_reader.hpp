@@ -67,9 +67,13 @@ class YamlReader {
       expr_.define(kv.first.as<std::string>(), kv.second.Scalar(), file_, line(kv.first), overrides);
     }
   }
-  geometry::Vec2 point(const YAML::Node& n) const {
-    if (!n.IsSequence() || n.size() != 2) fail(n, "expected a vector [x, y]");
-    return {number(n[0]), number(n[1])};
+  geometry::Vec2 point(const YAML::Node& n) const { return vector(n, 2); }
+  /// A vector of `size` (2 or 3) numbers.
+  Eigen::VectorXd vector(const YAML::Node& n, int size) const {
+    if (!n.IsSequence() || int(n.size()) != size) fail(n, size == 2 ? "expected a vector [x, y]" : "expected a vector [x, y, z]");
+    Eigen::VectorXd v(size);
+    for (int k = 0; k < size; ++k) v[k] = number(n[k]);
+    return v;
   }
 
  private:
