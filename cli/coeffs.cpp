@@ -11,30 +11,6 @@
 
 namespace billiards::cli {
 
-std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene) {
-  using Kind = dynamics::Force::Kind;
-  const Kind kind = scene.force.kind;
-  if (scene.energy <= 0 || (kind != Kind::periodic && kind != Kind::field)) return std::nullopt;
-  if (kind == Kind::periodic && !scene.potential) {
-    analysis::Drive drive;
-    drive.F = scene.force.amplitude;
-    drive.omega = scene.force.omega;
-    drive.mass = scene.mass;
-    return analysis::coefficients(scene.measures(), drive, scene.energy);
-  }
-  // A field amplitude or a potential: quadrature along the wall (2-D scenes only).
-  const auto& field = scene.force.field;
-  const geometry::Vec2 uniform = kind == Kind::periodic ? geometry::Vec2(scene.force.amplitude) : geometry::Vec2::Zero();
-  const analysis::ForceField F = [&](const geometry::Vec2& x) {
-    return kind == Kind::field ? geometry::Vec2(field[0](x), field[1](x)) : uniform;
-  };
-  const auto& region = scene.shape.region;
-  if (!scene.potential) return analysis::coefficients(region, F, scene.force.omega, scene.mass, scene.energy);
-  const auto& U = scene.potential->U;
-  return analysis::coefficients(region, [&](const geometry::Vec2& x) { return U(x); }, F, scene.force.omega,
-                                scene.mass, scene.energy);
-}
-
 void print_prediction(const analysis::Coefficients& c, double dt) {
   const auto pm = [](double error) { return error > 0 ? fmt::format(" (± {:.2g})", error) : std::string(); };
   const std::string C = c.closed_form ? fmt::format("{:.6g}", c.C) : "none (potential)";
@@ -63,7 +39,7 @@ void add_coeffs(CLI::App& app) {
   cmd->callback([args] {
     args->overrides.set = parse_overrides(args->set);
     const auto scene = dynamics::load_scene(args->scene, args->overrides);
-    const auto c = prediction_of(scene);
+    const auto c = analysis::prediction_of(scene);
     if (!c)
       throw InputError(args->scene, 0,
                        "coeffs needs a periodic force (uniform or field) and a microcanonical initial energy");

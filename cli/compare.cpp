@@ -99,7 +99,7 @@ struct CompareArgs : RunArgs {
 
 void compare(const CompareArgs& args) {
   const auto scene = load_scene(args);
-  const auto prediction = prediction_of(scene);
+  const auto prediction = analysis::prediction_of(scene);
   if (!prediction || !prediction->closed_form)
     throw InputError(scene.file, 0,
                      "compare needs a scene with an analytic Fokker-Planck prediction: a periodic or field force, no "

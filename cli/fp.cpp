@@ -29,35 +29,26 @@ struct FpArgs {
 void fp(FpArgs& args) {
   args.overrides.set = parse_overrides(args.set);
   const auto scene = dynamics::load_scene(args.scene, args.overrides);
-  const auto c = prediction_of(scene);
+  const auto c = analysis::prediction_of(scene);
   if (!c || !c->closed_form)
     throw InputError(args.scene, 0,
                      "fp needs a periodic force (uniform or field), no potential, and a microcanonical initial energy");
   std::sort(args.times.begin(), args.times.end());
+  args.times.erase(std::unique(args.times.begin(), args.times.end()), args.times.end());
   if (args.times.empty() || !(args.times.front() > 0)) throw InputError("--times", 0, "times must be positive");
-  // Work in s = C t, where g1 = √E and g2 = 4E^{3/2}/(d+1).  The δ start cannot be gridded:
-  // start from the exact solution at a tenth of the first time.
   const int d = c->dimension;
-  const double E0 = scene.energy, s_last = c->C * args.times.back();
-  const auto grid = analysis::quartic_root_grid(40 * E0 + 50 * s_last * s_last, args.cells);
-  auto g1 = [](double E) { return std::sqrt(E); };
-  auto g2 = [d](double E) { return 4 * std::pow(E, 1.5) / (d + 1); };
-  double s = c->C * args.times.front() / 10;
-  std::vector<double> eta(grid.cells());
-  for (std::size_t i = 0; i < eta.size(); ++i) eta[i] = analysis::fokker_planck_eta(grid.center(i), s, E0, d);
-  std::vector<std::vector<double>> numeric;
-  for (double t : args.times) {
-    eta = analysis::evolve_fokker_planck(grid, eta, g1, g2, c->C * t - s, 2000);
-    s = c->C * t;
-    numeric.push_back(eta);
-  }
+  const double E0 = scene.energy;
+  std::vector<double> s;
+  for (double t : args.times) s.push_back(c->C * t);
+  const auto solution = analysis::solve_fokker_planck(s, E0, d, args.cells);
+  const auto& grid = solution.grid;
   std::string csv = "E";
   for (double t : args.times) csv += fmt::format(",eta_numerical(t={0}),eta_analytic(t={0})", t);
   csv += "\n";
   for (std::size_t i = 0; i < grid.cells(); ++i) {
     csv += fmt::format("{:.10g}", grid.center(i));
     for (std::size_t k = 0; k < args.times.size(); ++k)
-      csv += fmt::format(",{:.10g},{:.10g}", numeric[k][i],
+      csv += fmt::format(",{:.10g},{:.10g}", solution.eta[k][i],
                          analysis::fokker_planck_eta(grid.center(i), c->C * args.times[k], E0, d));
     csv += "\n";
   }

@@ -3,6 +3,7 @@
 #include "options.hpp"
 
 #include "billiards/geometry.hpp"
+#include "billiards/geometry/shape_info.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
 #include <fmt/core.h>
@@ -13,29 +14,6 @@
 namespace billiards::cli {
 
 namespace {
-
-nlohmann::json pieces_json(const geometry::Region2& region) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const geometry::Loop* loop : region.loops()) {
-    for (std::size_t i = 0; i < loop->pieces.size(); ++i) {
-      const auto& p = loop->pieces[i];
-      nlohmann::json j = {{"kind", geometry::kind_of(p)},
-                          {"line", loop->where[i].line},
-                          {"loop", loop == &region.outer ? "boundary" : "hole"},
-                          {"length", geometry::length_of(p)},
-                          {"curvature", geometry::curvature_of(p)},
-                          {"from", {geometry::source_of(p).x(), geometry::source_of(p).y()}},
-                          {"to", {geometry::target_of(p).x(), geometry::target_of(p).y()}}};
-      if (const auto* a = std::get_if<geometry::Arc>(&p)) {
-        j["center"] = {a->center.x(), a->center.y()};
-        j["radius"] = a->radius;
-        j["sweep"] = a->sweep;
-      }
-      out.push_back(j);
-    }
-  }
-  return out;
-}
 
 /// `billiard info` for a 3-D shape file (`dimension: 3`).
 void print_info3(const std::string& path, const Overrides& set, bool json) {
@@ -77,22 +55,6 @@ void print_info3(const std::string& path, const Overrides& set, bool json) {
 
 }  // namespace
 
-nlohmann::json shape_info(const geometry::Shape& shape) {
-  const auto m = geometry::measures_of(shape.region);
-  const auto& T = m.boundary_tensor;
-  return {{"name", shape.region.name},
-          {"file", shape.region.origin.file},
-          {"dimension", m.dimension},
-          {"V", m.volume},
-          {"S", m.surface},
-          {"mean_free_path", geometry::mean_free_path(m)},
-          {"boundary_tensor", {{T(0, 0), T(0, 1)}, {T(1, 0), T(1, 1)}}},
-          {"bbox", {{m.bbox_lo(0), m.bbox_lo(1)}, {m.bbox_hi(0), m.bbox_hi(1)}}},
-          {"parameters", shape.parameters},
-          {"holes", shape.region.holes.size()},
-          {"pieces", pieces_json(shape.region)}};
-}
-
 void add_info(CLI::App& app) {
   auto* cmd = app.add_subcommand("info", "Exact geometry of a shape: V, S, mean free path, ...");
   struct Args {
@@ -108,7 +70,7 @@ void add_info(CLI::App& app) {
     if (geometry3::shape_dimension(args->shape) == 3)
       return print_info3(args->shape, parse_overrides(args->set), args->json);
     const auto shape = geometry::load_shape(args->shape, parse_overrides(args->set));
-    const auto info = shape_info(shape);
+    const auto info = geometry::shape_info(shape);
     if (args->json) {
       std::cout << info.dump(2) << "\n";
       return;

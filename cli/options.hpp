@@ -39,11 +39,6 @@ inline Overrides parse_overrides(const std::vector<std::string>& assignments) {
   return out;
 }
 
-/// The JSON block `billiard info --json` prints.
-nlohmann::json shape_info(const geometry::Shape& shape);
-
-/// The theory's prediction for a scene (periodic drive, microcanonical start), if it has one.
-std::optional<analysis::Coefficients> prediction_of(const dynamics::Scene& scene);
 void print_prediction(const analysis::Coefficients& c, double dt);
 
 }  // namespace billiards::cli

@@ -31,18 +31,10 @@ namespace fs = std::filesystem;
 /// thousands of edges is still drawn edge for edge.
 constexpr double arc_step = geometry::pi / 360;
 
-/// The loop as a closed polyline: each piece contributes its vertices up to, not including,
-/// its target, which is the next piece's source.
+/// The loop's outline (geometry::outline_of) as a JSON list of points.
 nlohmann::json loop_points(const geometry::Loop& loop) {
   nlohmann::json pts = nlohmann::json::array();
-  for (const auto& p : loop.pieces) {
-    const auto* arc = std::get_if<geometry::Arc>(&p);
-    const int n = arc ? std::max(4, int(std::ceil(std::abs(arc->sweep) / arc_step))) : 1;
-    for (int i = 0; i < n; ++i) {
-      const auto q = geometry::point_along(p, double(i) / n);
-      pts.push_back({q.x(), q.y()});
-    }
-  }
+  for (const auto& q : geometry::outline_of(loop, arc_step)) pts.push_back({q.x(), q.y()});
   return pts;
 }
 
@@ -50,15 +42,14 @@ nlohmann::json loop_points(const geometry::Loop& loop) {
 nlohmann::json free_trajectory(const geometry::Region2& region, int collisions, std::uint64_t seed) {
   const dynamics::Table table(region);
   dynamics::ParticleRng rng(seed, 0);
-  auto s = dynamics::sample_microcanonical(table, 1.0, rng);
+  const auto s = dynamics::sample_microcanonical(table, 1.0, rng);
   nlohmann::json pts = nlohmann::json::array({{s.x.x(), s.x.y()}});
-  for (int k = 0; k < collisions; ++k) {
-    const auto hit = dynamics::collision(table, dynamics::FreeFlight{}, s);
-    if (!hit.found())
-      throw std::runtime_error(fmt::format("the trajectory escaped the region after {} collisions", k));
-    dynamics::bounce(dynamics::FreeFlight{}, s, hit);
-    pts.push_back({s.x.x(), s.x.y()});
-  }
+  const std::size_t made = dynamics::evolve(table, dynamics::FreeFlight{}, s, collisions,
+                                            [&](const dynamics::Hit&, const dynamics::State& after) {
+                                              pts.push_back({after.x.x(), after.x.y()});
+                                            });
+  if (made < std::size_t(collisions))
+    throw std::runtime_error(fmt::format("the trajectory escaped the region after {} collisions", made));
   return pts;
 }
 

@@ -7,9 +7,7 @@
 
 #include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/analysis/statistics.hpp"
-#include "billiards/dynamics/field_flight.hpp"
-#include "billiards/dynamics/forced_flight.hpp"
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/scene_run.hpp"
 
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -20,8 +18,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <tuple>
-#include <type_traits>
 
 namespace billiards::cli {
 
@@ -93,28 +89,11 @@ nlohmann::json fingerprint_of(const Scene& scene) {
           {"seed", scene.seed}, {"omega", scene.force.omega}, {"mass", scene.mass}};
 }
 
-/// Is the flight model a 3-D one?
-template <class Flight>
-constexpr bool is_3d = std::is_base_of_v<dynamics3::State3, typename Flight::State>;
-
 template <class Flight>
 EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& args, double& seconds) {
-  // The table and the initial states of the flight's dimension; the rest is the same code.
-  const auto& [region, initial_states] = [&] {
-    if constexpr (is_3d<Flight>) return std::tie(scene.shape3.region, scene.initial_states3);
-    else return std::tie(scene.shape.region, scene.initial_states);
-  }();
-  const std::conditional_t<is_3d<Flight>, dynamics3::Table3, dynamics::Table> table(region);
-  dynamics::RunOptions opt;
-  opt.record_times = scene.record_times;
-  opt.mass = scene.mass;
-  // A forced flight costs ~10 containment tests, so every flight of a driven run is checked
-  // (12% measured); free flights are 2× slower checked, so there it is --verify.
-  opt.verify_every_flight = args.verify || !dynamics::is_straight<Flight>;
-  const auto sampled = dynamics::microcanonical(table, flight, std::sqrt(2 * scene.energy / scene.mass), scene.seed);
-  auto initial = [&](std::size_t i) {
-    return initial_states.empty() ? sampled(i) : flight.start(initial_states[i]);
-  };
+  const auto table = dynamics::table_of<Flight>(scene);
+  const auto opt = dynamics::run_options<Flight>(scene, args.verify);
+  const auto initial = dynamics::initial_states(scene, table, flight);
   const std::size_t n = scene.particles, m = opt.record_times.size();
   EnsembleResult result;
   result.energies.resize(n * m);
@@ -227,33 +206,6 @@ void write_energies_csv(std::ostream& out, const Scene& scene, const EnsembleRes
   }
 }
 
-/// The flight model the scene needs, chosen at compile time for the whole ensemble.
-template <class Run>
-auto with_flight(const Scene& scene, Run&& run) {
-  if (scene.dimension == 3) {  // (the scene file refuses forces that 3-D has no flight for)
-    const dynamics3::Vec3 accel = scene.force.amplitude / scene.mass;
-    if (scene.force.kind == dynamics::Force::Kind::periodic)
-      return run(dynamics3::PeriodicDriveFlight3{accel, scene.force.omega, scene.force.phase});
-    return run(dynamics3::FreeFlight3{});
-  }
-  // Closed forms where they exist; the integrator only for a position-dependent drive or a
-  // potential.
-  if (scene.potential || scene.force.kind == dynamics::Force::Kind::field)
-    return run(dynamics::FieldFlight(scene.force, scene.potential, scene.mass, dynamics::Table(scene.shape.region),
-                                     scene.integrator_tolerance));
-  const dynamics::Vec2 accel = scene.force.amplitude / scene.mass;
-  switch (scene.force.kind) {
-    case dynamics::Force::Kind::constant: return run(dynamics::ConstantForceFlight{accel});
-    case dynamics::Force::Kind::periodic:
-      if (scene.force.quivering_walls)
-        return run(dynamics::QuiveringWallFlight{accel, scene.force.omega, scene.force.phase});
-      return run(dynamics::PeriodicDriveFlight{accel, scene.force.omega, scene.force.phase});
-    case dynamics::Force::Kind::field:  // (handled above)
-    case dynamics::Force::Kind::none: break;
-  }
-  return run(dynamics::FreeFlight{});
-}
-
 }  // namespace
 
 void add_run_options(CLI::App* cmd, RunArgs& args) {
@@ -285,11 +237,11 @@ std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_i
   if (args.threads <= 0) args.threads = omp_get_max_threads();
   fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
              scene.shape_name(), scene.force.name(), scene.time);
-  RunOutcome run{scene, prediction_of(scene), {}, {}};
+  RunOutcome run{scene, analysis::prediction_of(scene), {}, {}};
   if (run.prediction) print_prediction(*run.prediction, scene.time);
   double seconds = 0;
   try {
-    run.result = with_flight(scene, [&](const auto& flight) { return execute(scene, flight, args, seconds); });
+    run.result = dynamics::with_flight(scene, [&](const auto& flight) { return execute(scene, flight, args, seconds); });
   } catch (const Interrupted&) {
     fmt::print("stopped after {} new chunk(s); the same command resumes from {}.partial/\n", args.max_chunks,
                scene.output_dir);

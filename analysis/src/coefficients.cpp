@@ -2,6 +2,7 @@
 
 #include "billiards/analysis/potential.hpp"
 #include "billiards/analysis/wall.hpp"
+#include "billiards/dynamics/scene.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -161,6 +162,30 @@ void to_json(nlohmann::json& j, const Coefficients& c) {
        {"validity_force_ratio", c.force_ratio},
        {"validity_length_ratio", c.length_ratio},
        {"warnings", c.warnings}};
+}
+
+std::optional<Coefficients> prediction_of(const dynamics::Scene& scene) {
+  using Kind = dynamics::Force::Kind;
+  const Kind kind = scene.force.kind;
+  if (scene.energy <= 0 || (kind != Kind::periodic && kind != Kind::field)) return std::nullopt;
+  if (kind == Kind::periodic && !scene.potential) {
+    Drive drive;
+    drive.F = scene.force.amplitude;
+    drive.omega = scene.force.omega;
+    drive.mass = scene.mass;
+    return coefficients(scene.measures(), drive, scene.energy);
+  }
+  // A field amplitude or a potential: quadrature along the wall (2-D scenes only).
+  const auto& field = scene.force.field;
+  const geometry::Vec2 uniform = kind == Kind::periodic ? geometry::Vec2(scene.force.amplitude) : geometry::Vec2::Zero();
+  const ForceField F = [&](const geometry::Vec2& x) {
+    return kind == Kind::field ? geometry::Vec2(field[0](x), field[1](x)) : uniform;
+  };
+  const auto& region = scene.shape.region;
+  if (!scene.potential) return coefficients(region, F, scene.force.omega, scene.mass, scene.energy);
+  const auto& U = scene.potential->U;
+  return coefficients(region, [&](const geometry::Vec2& x) { return U(x); }, F, scene.force.omega, scene.mass,
+                      scene.energy);
 }
 
 }  // namespace billiards::analysis

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace billiards::analysis {
 
@@ -126,6 +127,24 @@ std::vector<double> evolve_fokker_planck(const EnergyGrid& grid, std::vector<dou
   Eigen::VectorXd x = Eigen::Map<Eigen::VectorXd>(eta.data(), Eigen::Index(n));
   for (int k = 0; k < steps; ++k) x = lu.solve(x);
   return {x.data(), x.data() + n};
+}
+
+FokkerPlanckSolution solve_fokker_planck(const std::vector<double>& s, double E0, int d, int cells, int steps) {
+  if (s.empty() || !(s.front() > 0)) throw std::invalid_argument("Fokker-Planck times must be positive");
+  for (std::size_t k = 1; k < s.size(); ++k)
+    if (!(s[k] > s[k - 1])) throw std::invalid_argument("Fokker-Planck times must be increasing");
+  FokkerPlanckSolution out{quartic_root_grid(40 * E0 + 50 * s.back() * s.back(), cells), {}};
+  auto g1 = [](double E) { return std::sqrt(E); };
+  auto g2 = [d](double E) { return 4 * std::pow(E, 1.5) / (d + 1); };
+  double now = s.front() / 10;
+  std::vector<double> eta(out.grid.cells());
+  for (std::size_t i = 0; i < eta.size(); ++i) eta[i] = fokker_planck_eta(out.grid.center(i), now, E0, d);
+  for (double next : s) {
+    eta = evolve_fokker_planck(out.grid, eta, g1, g2, next - now, steps);
+    now = next;
+    out.eta.push_back(eta);
+  }
+  return out;
 }
 
 }  // namespace billiards::analysis

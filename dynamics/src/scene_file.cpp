@@ -175,9 +175,14 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
   if (!in) throw InputError(path, 0, "cannot open scene file");
   std::stringstream buffer;
   buffer << in.rdbuf();
+  return parse_scene(buffer.str(), path, fs::path(path).parent_path().string(), ov);
+}
+
+Scene parse_scene(const std::string& text, const std::string& path, const std::string& base_dir,
+                  const SceneOverrides& ov) {
   Scene scene;
   scene.file = path;
-  scene.text = buffer.str();
+  scene.text = text;
   YAML::Node doc;
   try {
     doc = YAML::Load(scene.text);
@@ -207,7 +212,7 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
 
   const YAML::Node shape_node = r.required(doc, "shape", "a scene file");
   if (!shape_node.IsScalar()) r.fail(shape_node, "'shape' is the path of a shape file");
-  const std::string shape_path = (fs::path(path).parent_path() / shape_node.Scalar()).lexically_normal().string();
+  const std::string shape_path = (fs::path(base_dir) / shape_node.Scalar()).lexically_normal().string();
   scene.dimension = geometry3::shape_dimension(shape_path);
   if (scene.dimension == 3)
     scene.shape3 = geometry3::load_shape3(shape_path, shape_set);
@@ -251,7 +256,7 @@ Scene load_scene(const std::string& path, const SceneOverrides& ov) {
   const YAML::Node init = r.required(doc, "initial", "a scene file");
   r.expect_keys(init, {"microcanonical", "csv"}, "'initial'");
   if (const YAML::Node csv = init["csv"]) {
-    scene.initial_csv = (fs::path(path).parent_path() / csv.Scalar()).lexically_normal().string();
+    scene.initial_csv = (fs::path(base_dir) / csv.Scalar()).lexically_normal().string();
     if (scene.dimension == 3) {
       const dynamics3::Table3 table(scene.shape3.region);
       scene.initial_states3 = read_initial_csv<dynamics3::State3>(scene.initial_csv,

@@ -1,5 +1,6 @@
 #include "billiards/geometry/pieces.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace billiards::geometry {
@@ -74,6 +75,16 @@ std::size_t Region2::piece_count() const {
   std::size_t n = 0;
   for (const Loop* l : loops()) n += l->pieces.size();
   return n;
+}
+
+std::vector<Vec2> outline_of(const Loop& loop, double arc_step) {
+  std::vector<Vec2> pts;
+  for (const auto& p : loop.pieces) {
+    const auto* arc = std::get_if<Arc>(&p);
+    const int n = arc ? std::max(4, int(std::ceil(std::abs(arc->sweep) / arc_step))) : 1;
+    for (int i = 0; i < n; ++i) pts.push_back(point_along(p, double(i) / n));
+  }
+  return pts;
 }
 
 }  // namespace billiards::geometry

@@ -8,8 +8,13 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
+
+namespace billiards::dynamics {
+struct Scene;
+}
 
 namespace billiards::analysis {
 
@@ -71,5 +76,9 @@ Coefficients coefficients(const geometry::Measures& m, const Drive& drive, doubl
 /// largest |F| on the wall (sampled).
 Coefficients coefficients(const geometry::Region2& region, const std::function<geometry::Vec2(const geometry::Vec2&)>& F,
                           double omega, double mass, double E);
+
+/// The prediction for a scene: its coefficients at its initial energy, if the theory covers it
+/// (a periodic or field drive, with or without a potential, and a microcanonical start).
+std::optional<Coefficients> prediction_of(const dynamics::Scene& scene);
 
 }  // namespace billiards::analysis

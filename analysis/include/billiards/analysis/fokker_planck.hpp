@@ -59,4 +59,16 @@ std::vector<double> evolve_fokker_planck(const EnergyGrid& grid, std::vector<dou
                                          const std::function<double(double)>& g1,
                                          const std::function<double(double)>& g2, double duration, int steps);
 
+/// η(·, s_k) at increasing s_1 < s_2 < ... (time measured in s = C t, so g1 = √E and
+/// g2 = 4E^{3/2}/(d+1)), starting from δ(E − E0), by evolve_fokker_planck with `steps` steps
+/// between consecutive s_k, on `cells` cells of quartic_root_grid(40 E0 + 50 s_last²) (η spreads
+/// to E ~ s²).  The δ cannot be gridded: the solver starts from the exact η at s_1/10.
+/// Throws std::invalid_argument unless the s_k are positive and increasing.
+struct FokkerPlanckSolution {
+  EnergyGrid grid;
+  std::vector<std::vector<double>> eta;  // [k][cell]
+};
+FokkerPlanckSolution solve_fokker_planck(const std::vector<double>& s, double E0, int d, int cells,
+                                         int steps = 2000);
+
 }  // namespace billiards::analysis

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace billiards::dynamics {
@@ -76,21 +77,31 @@ void bounce(const Flight& flight, typename Flight::State& s, const BasicHit<type
   s.v = reflect(s.v, hit.normal);
 }
 
-/// The next `collisions` hits of the particle from `s`, bouncing at each (fewer if it meets
-/// no wall: an escape); energy-conserving flights restore the speed after every bounce.
+/// Follows the particle from `s` through its next `collisions` bounces (fewer if it meets no
+/// wall: an escape), calling visit(hit, state) with the state just after each bounce;
+/// energy-conserving flights restore the speed after every bounce.  Returns the bounces made.
+/// Any table (2-D or dynamics3's): `collision` and `bounce` are found by argument lookup.
+template <class TableT, class Flight, class Visit>
+std::size_t evolve(const TableT& table, const Flight& flight, typename Flight::State s, std::size_t collisions,
+                   Visit&& visit) {
+  const auto v2 = s.v.squaredNorm();
+  for (std::size_t k = 0; k < collisions; ++k) {
+    const auto hit = collision(table, flight, s);
+    if (!hit.found()) return k;
+    bounce(flight, s, hit);
+    if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
+    visit(hit, std::as_const(s));
+  }
+  return collisions;
+}
+
+/// The next `collisions` hits of the particle from `s` (fewer on an escape).
 template <class Flight>
 std::vector<BasicHit<typename Flight::Scalar>> evolve(const BasicTable<typename Flight::Scalar>& table,
                                                       const Flight& flight, typename Flight::State s,
                                                       std::size_t collisions) {
   std::vector<BasicHit<typename Flight::Scalar>> hits;
-  const auto v2 = s.v.squaredNorm();
-  for (std::size_t k = 0; k < collisions; ++k) {
-    const auto hit = collision(table, flight, s);
-    if (!hit.found()) break;
-    bounce(flight, s, hit);
-    if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
-    hits.push_back(hit);
-  }
+  evolve(table, flight, s, collisions, [&](const auto& hit, const auto&) { hits.push_back(hit); });
   return hits;
 }
 

@@ -84,5 +84,9 @@ struct SceneOverrides {
 
 /// Reads a scene and its shape.  Throws InputError naming file and line.
 Scene load_scene(const std::string& path, const SceneOverrides& overrides = {});
+/// Same, from text in memory; `name` stands for the file in error messages and `base_dir` is
+/// the folder that the shape and initial-condition paths are relative to.
+Scene parse_scene(const std::string& yaml_text, const std::string& name, const std::string& base_dir,
+                  const SceneOverrides& overrides = {});
 
 }  // namespace billiards::dynamics

@@ -74,6 +74,11 @@ struct Loop {
   SourceRef origin;              // where the loop was written
 };
 
+/// The loop as a closed polyline for drawing: each piece gives its vertices up to, not
+/// including, its target (the next piece's source); arcs get one every `arc_step` radians (at
+/// least 4).
+std::vector<Vec2> outline_of(const Loop& loop, double arc_step);
+
 /// A 2-D billiard table: a bounded region = inside `outer` and outside every hole.
 struct Region2 {
   std::string name;

@@ -1,0 +1,86 @@
+// A scene's ensemble, as `billiard run` and the Python module run it: the flight model of its
+// force, its table, its run options and its initial states, in 2-D or 3-D.  Every caller that
+// runs a scene goes through these, so that the same scene and seed give the same numbers
+// everywhere.
+#pragma once
+
+#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/field_flight.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics/scene.hpp"
+#include "billiards/dynamics3/driven3.hpp"
+#include "billiards/dynamics3/table3.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+namespace billiards::dynamics {
+
+/// Calls run(flight) with the flight model the scene needs, chosen at compile time for the
+/// whole ensemble (a free scene runs the straight-line kernels with no drive code in them).
+template <class Run>
+auto with_flight(const Scene& scene, Run&& run) {
+  if (scene.dimension == 3) {  // (the scene file refuses forces that 3-D has no flight for)
+    const dynamics3::Vec3 accel = scene.force.amplitude / scene.mass;
+    if (scene.force.kind == Force::Kind::periodic)
+      return run(dynamics3::PeriodicDriveFlight3{accel, scene.force.omega, scene.force.phase});
+    return run(dynamics3::FreeFlight3{});
+  }
+  // Closed forms where they exist; the integrator only for a position-dependent drive or a
+  // potential.
+  if (scene.potential || scene.force.kind == Force::Kind::field)
+    return run(FieldFlight(scene.force, scene.potential, scene.mass, Table(scene.shape.region),
+                           scene.integrator_tolerance));
+  const Vec2 accel = scene.force.amplitude / scene.mass;
+  switch (scene.force.kind) {
+    case Force::Kind::constant: return run(ConstantForceFlight{accel});
+    case Force::Kind::periodic:
+      if (scene.force.quivering_walls) return run(QuiveringWallFlight{accel, scene.force.omega, scene.force.phase});
+      return run(PeriodicDriveFlight{accel, scene.force.omega, scene.force.phase});
+    case Force::Kind::field:  // (handled above)
+    case Force::Kind::none: break;
+  }
+  return run(FreeFlight{});
+}
+
+/// Is the flight model a 3-D one?
+template <class Flight>
+constexpr bool is_3d = std::is_base_of_v<dynamics3::State3, typename Flight::State>;
+
+/// The table of the flight's dimension.
+template <class Flight>
+using TableFor = std::conditional_t<is_3d<Flight>, dynamics3::Table3, Table>;
+
+/// The scene's table for `Flight`.
+template <class Flight>
+TableFor<Flight> table_of(const Scene& scene) {
+  if constexpr (is_3d<Flight>) return TableFor<Flight>(scene.shape3.region);
+  else return TableFor<Flight>(scene.shape.region);
+}
+
+/// The scene's record times and mass.  A forced flight costs ~10 containment tests, so every
+/// flight of a forced run is checked (12% measured); free flights are 2× slower checked, so
+/// there only when `verify` asks for it.
+template <class Flight>
+RunOptions run_options(const Scene& scene, bool verify) {
+  RunOptions opt;
+  opt.record_times = scene.record_times;
+  opt.mass = scene.mass;
+  opt.verify_every_flight = verify || !is_straight<Flight>;
+  return opt;
+}
+
+/// Particle i's initial state: row i of the scene's initial-condition file, or its draw from the
+/// microcanonical ensemble at the scene's energy with ParticleRng(seed, i).  `scene` and `table`
+/// must outlive the returned function.
+template <class Flight>
+auto initial_states(const Scene& scene, const TableFor<Flight>& table, const Flight& flight) {
+  const auto* given = [&] {
+    if constexpr (is_3d<Flight>) return &scene.initial_states3;
+    else return &scene.initial_states;
+  }();
+  const auto sampled = microcanonical(table, flight, std::sqrt(2 * scene.energy / scene.mass), scene.seed);
+  return [given, sampled, flight](std::size_t i) { return given->empty() ? sampled(i) : flight.start((*given)[i]); };
+}
+
+}  // namespace billiards::dynamics

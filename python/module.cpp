@@ -1,0 +1,356 @@
+// The Python module `billiards` (pybind11): shapes and scenes from files or dicts, their exact
+// geometry and the theory's coefficients, the Fokker–Planck solutions, ensemble runs and single
+// trajectories.  It calls the same library functions as the `billiard` program, so the same
+// scene and seed give the same numbers, bit for bit.  Arrays come out as numpy arrays that own
+// the C++ buffers (no copies); runs release the GIL.
+#include "billiards/analysis/coefficients.hpp"
+#include "billiards/analysis/fokker_planck.hpp"
+#include "billiards/dynamics/random.hpp"
+#include "billiards/dynamics/scene_run.hpp"
+#include "billiards/geometry/measures.hpp"
+#include "billiards/geometry/shape_file.hpp"
+#include "billiards/geometry/shape_info.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace billiards::python {
+
+namespace {
+
+using geometry::Shape;
+using dynamics::Scene;
+
+// --- conversions ---------------------------------------------------------------------------
+
+/// A numpy array that owns `v`: the vector moves to the heap and a capsule frees it with the
+/// array, so nothing is copied.
+template <class T>
+py::array_t<T> adopt(std::vector<T>&& v, std::vector<py::ssize_t> shape) {
+  auto* owner = new std::vector<T>(std::move(v));
+  const py::capsule free(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<T>(std::move(shape), owner->data(), free);
+}
+
+/// JSON as Python objects, through the json module: the same keys and numbers as the CLI's
+/// --json output (nlohmann writes each double in its shortest round-trip form).
+py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+/// A dict as YAML text for the file parsers: JSON is YAML, and one key per line lets errors
+/// name a line.  numpy scalars and arrays become lists and numbers.
+std::string yaml_text_of(const py::dict& d) {
+  const auto plain = py::cpp_function([](const py::object& o) { return o.attr("tolist")(); });
+  return py::str(py::module_::import("json").attr("dumps")(d, "indent"_a = 1, "default"_a = plain));
+}
+
+/// Python's set={"R2": 3, "a": "2*R1"}: NAME=VALUE overrides; numbers are written in full.
+Overrides overrides_of(const std::optional<py::dict>& set) {
+  Overrides out;
+  if (!set) return out;
+  for (const auto& [key, value] : *set) {
+    const std::string text = py::isinstance<py::str>(value) ? value.cast<std::string>()
+                                                             : fmt::format("{:.17g}", value.cast<double>());
+    add_override(out, py::str(key).cast<std::string>() + "=" + text);
+  }
+  return out;
+}
+
+std::string path_of(const py::object& source) { return py::str(py::module_::import("os").attr("fspath")(source)); }
+
+py::array_t<double> vector_array(const Eigen::VectorXd& v) {
+  return adopt(std::vector<double>(v.data(), v.data() + v.size()), {v.size()});
+}
+
+// --- shapes and scenes ---------------------------------------------------------------------
+
+std::shared_ptr<Shape> load_shape(const py::object& source, const std::optional<py::dict>& set,
+                                  const std::string& name) {
+  const auto ov = overrides_of(set);
+  if (py::isinstance<py::dict>(source))
+    return std::make_shared<Shape>(geometry::parse_shape(yaml_text_of(source), name, ov));
+  return std::make_shared<Shape>(geometry::load_shape(path_of(source), ov));
+}
+
+std::shared_ptr<Scene> load_scene(const py::object& source, std::optional<std::size_t> particles,
+                                  std::optional<double> time, std::optional<double> omega,
+                                  std::optional<std::vector<double>> record, std::optional<std::uint64_t> seed,
+                                  const std::optional<py::dict>& set, const std::optional<py::object>& base_dir,
+                                  const std::string& name) {
+  dynamics::SceneOverrides ov;
+  ov.set = overrides_of(set);
+  ov.particles = particles;
+  ov.time = time;
+  ov.omega = omega;
+  ov.record = std::move(record);
+  ov.seed = seed;
+  if (py::isinstance<py::dict>(source)) {
+    const std::string base = base_dir ? path_of(*base_dir) : ".";
+    return std::make_shared<Scene>(dynamics::parse_scene(yaml_text_of(source), name, base, ov));
+  }
+  return std::make_shared<Scene>(dynamics::load_scene(path_of(source), ov));
+}
+
+py::dict info(const Shape& shape) {
+  py::dict d = to_python(geometry::shape_info(shape));
+  const auto m = geometry::measures_of(shape.region);
+  const auto& T = m.boundary_tensor;
+  d["boundary_tensor"] = adopt(std::vector<double>{T(0, 0), T(0, 1), T(1, 0), T(1, 1)}, {2, 2});
+  d["bbox"] = adopt(std::vector<double>{m.bbox_lo(0), m.bbox_lo(1), m.bbox_hi(0), m.bbox_hi(1)}, {2, 2});
+  d["description"] = shape.description;
+  return d;
+}
+
+py::dict force_of(const Scene& scene) {
+  const auto& f = scene.force;
+  return py::dict("kind"_a = f.name(), "amplitude"_a = vector_array(f.amplitude), "omega"_a = f.omega,
+                  "phase"_a = f.phase);
+}
+
+// --- theory --------------------------------------------------------------------------------
+
+py::object coefficients_of_scene(const Scene& scene) {
+  const auto c = analysis::prediction_of(scene);
+  if (!c)
+    throw InputError(scene.file, 0,
+                     "the theory's coefficients need a periodic force and a microcanonical initial energy");
+  return to_python(nlohmann::json(*c));
+}
+
+py::object coefficients_of_shape(const Shape& shape, const std::vector<double>& F, double omega, double E,
+                                 double mass) {
+  if (F.size() != 2) throw py::value_error("F must have 2 components");
+  if (!(omega > 0) || !(E > 0) || !(mass > 0)) throw py::value_error("omega, E and mass must be positive");
+  analysis::Drive drive;
+  drive.F = Eigen::Vector2d(F[0], F[1]);
+  drive.omega = omega;
+  drive.mass = mass;
+  return to_python(nlohmann::json(analysis::coefficients(geometry::measures_of(shape.region), drive, E)));
+}
+
+py::tuple fokker_planck_numerical(const std::vector<double>& s, double E0, int dimension, int cells, int steps) {
+  if (cells < 10 || steps < 1) throw py::value_error("need cells >= 10 and steps >= 1");
+  analysis::FokkerPlanckSolution sol;
+  {
+    py::gil_scoped_release unlocked;
+    sol = analysis::solve_fokker_planck(s, E0, dimension, cells, steps);
+  }
+  const std::size_t n = sol.grid.cells();
+  std::vector<double> centers(n), eta;
+  eta.reserve(s.size() * n);
+  for (std::size_t i = 0; i < n; ++i) centers[i] = sol.grid.center(i);
+  for (const auto& row : sol.eta) eta.insert(eta.end(), row.begin(), row.end());
+  return py::make_tuple(adopt(std::move(centers), {py::ssize_t(n)}),
+                        adopt(std::move(eta), {py::ssize_t(s.size()), py::ssize_t(n)}),
+                        adopt(std::move(sol.grid.edges), {py::ssize_t(n + 1)}));
+}
+
+// --- dynamics ------------------------------------------------------------------------------
+
+py::dict run(const std::shared_ptr<Scene>& scene_ptr, int threads, bool verify) {
+  const Scene& scene = *scene_ptr;
+  if (threads <= 0) threads = omp_get_max_threads();
+  const std::size_t n = scene.particles, m = scene.record_times.size();
+  dynamics::EnsembleResult result;
+  result.energies.resize(n * m);
+  result.logs.resize(n);
+  double seconds = 0;
+  {
+    py::gil_scoped_release unlocked;
+    const auto start = std::chrono::steady_clock::now();
+    dynamics::with_flight(scene, [&](const auto& flight) {
+      using Flight = std::decay_t<decltype(flight)>;
+      const auto table = dynamics::table_of<Flight>(scene);
+      const auto opt = dynamics::run_options<Flight>(scene, verify);
+      dynamics::run_particles(table, flight, dynamics::initial_states(scene, table, flight), opt, 0, n, threads,
+                              result);
+    });
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  const double collisions = double(result.collisions());
+  // collisions and escaped are strided views into the particle logs, which one capsule owns.
+  auto* logs = new std::vector<dynamics::ParticleLog>(std::move(result.logs));
+  const py::capsule free_logs(logs, [](void* p) { delete static_cast<std::vector<dynamics::ParticleLog>*>(p); });
+  const auto stride = py::ssize_t(sizeof(dynamics::ParticleLog));
+  py::array_t<std::uint64_t> counts({py::ssize_t(n)}, {stride}, &(*logs)[0].collisions, free_logs);
+  py::array_t<bool> escaped({py::ssize_t(n)}, {stride}, &(*logs)[0].escaped, free_logs);
+  const auto prediction = analysis::prediction_of(scene);
+  return py::dict("record_times"_a = adopt(std::vector<double>(scene.record_times), {py::ssize_t(m)}),
+                  "energies"_a = adopt(std::move(result.energies), {py::ssize_t(n), py::ssize_t(m)}),
+                  "collisions"_a = counts, "escaped"_a = escaped, "seconds"_a = seconds,
+                  "collisions_per_second"_a = collisions / seconds, "threads"_a = threads,
+                  "prediction"_a = prediction ? to_python(nlohmann::json(*prediction)) : py::none());
+}
+
+/// The start and the state just after each bounce: times (K+1), positions and velocities
+/// (K+1, d), walls (K+1, the start has −1).  Fewer rows if the particle escaped.
+template <class Table, class Flight>
+py::dict trace(const Table& table, const Flight& flight, typename Flight::State s, std::size_t collisions) {
+  const auto d = py::ssize_t(s.x.size());
+  std::vector<double> t{s.t}, x(s.x.data(), s.x.data() + d), v(s.v.data(), s.v.data() + d);
+  std::vector<int> walls{-1};
+  std::size_t made = 0;
+  {
+    py::gil_scoped_release unlocked;
+    made = dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto& after) {
+      t.push_back(after.t);
+      x.insert(x.end(), after.x.data(), after.x.data() + d);
+      v.insert(v.end(), after.v.data(), after.v.data() + d);
+      walls.push_back(hit.wall);
+    });
+  }
+  const auto rows = py::ssize_t(t.size());
+  return py::dict("times"_a = adopt(std::move(t), {rows}), "positions"_a = adopt(std::move(x), {rows, d}),
+                  "velocities"_a = adopt(std::move(v), {rows, d}), "walls"_a = adopt(std::move(walls), {rows}),
+                  "escaped"_a = made < collisions);
+}
+
+py::dict scene_trajectory(const Scene& scene, std::size_t collisions, std::size_t particle) {
+  if (particle >= scene.particles) throw py::index_error("particle index beyond the scene's particles");
+  return dynamics::with_flight(scene, [&](const auto& flight) {
+    const auto table = dynamics::table_of<std::decay_t<decltype(flight)>>(scene);
+    return trace(table, flight, dynamics::initial_states(scene, table, flight)(particle), collisions);
+  });
+}
+
+py::dict shape_trajectory(const Shape& shape, std::size_t collisions, std::uint64_t seed, std::size_t particle,
+                          double speed) {
+  if (!(speed > 0)) throw py::value_error("speed must be positive");
+  const dynamics::Table table(shape.region);
+  dynamics::ParticleRng rng(seed, particle);
+  return trace(table, dynamics::FreeFlight{}, dynamics::sample_microcanonical(table, speed, rng), collisions);
+}
+
+}  // namespace
+
+}  // namespace billiards::python
+
+PYBIND11_MODULE(billiards, m) {
+  using namespace billiards;
+  using namespace billiards::python;
+  m.doc() = "Billiards: exact geometry of 2-D tables, deterministic ensembles of driven particles, and the "
+            "energy-diffusion theory of Hodson & Jarzynski (the library behind the `billiard` program).";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+
+  py::class_<Shape, std::shared_ptr<Shape>>(m, "Shape", "A validated 2-D table (see load_shape).")
+      .def_property_readonly("name", [](const Shape& s) { return s.region.name; })
+      .def_property_readonly("file", [](const Shape& s) { return s.region.origin.file; })
+      .def_property_readonly("description", [](const Shape& s) { return s.description; },
+                             "The leading comment block of the shape file.")
+      .def_property_readonly("parameters", [](const Shape& s) { return s.parameters; },
+                             "Parameter values after overrides.")
+      .def("info", &info, "Same as billiards.info(shape).")
+      .def("outline", [](const Shape& s, double arc_step) {
+             py::list loops;
+             for (const auto* loop : s.region.loops()) {
+               const auto pts = geometry::outline_of(*loop, arc_step);
+               std::vector<double> xy;
+               for (const auto& p : pts) xy.insert(xy.end(), {p.x(), p.y()});
+               loops.append(adopt(std::move(xy), {py::ssize_t(pts.size()), 2}));
+             }
+             return loops;
+           }, py::kw_only(), "arc_step"_a = geometry::pi / 360,
+           "The boundary for drawing: a closed polyline (n, 2) per loop, outer first (the vertices of "
+           "`billiard plot`; arcs get one every arc_step radians).")
+      .def("__repr__", [](const Shape& s) { return fmt::format("<billiards.Shape '{}'>", s.region.name); });
+
+  py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A shape, a force, particles and what to run (see load_scene).")
+      .def_property_readonly("file", [](const Scene& s) { return s.file; })
+      .def_property_readonly("text", [](const Scene& s) { return s.text; }, "The scene's YAML text.")
+      .def_property_readonly("dimension", [](const Scene& s) { return s.dimension; })
+      .def_property_readonly("shape", [](const Scene& s) {
+        if (s.dimension != 2) throw py::value_error("the Python module has no 3-D Shape yet");
+        return std::make_shared<Shape>(s.shape);
+      }, "The scene's 2-D Shape.")
+      .def_property_readonly("mass", [](const Scene& s) { return s.mass; })
+      .def_property_readonly("energy", [](const Scene& s) { return s.energy; },
+                             "Initial energy of the microcanonical ensemble (0 with an initial-condition file).")
+      .def_property_readonly("particles", [](const Scene& s) { return s.particles; })
+      .def_property_readonly("time", [](const Scene& s) { return s.time; }, "End time of the run.")
+      .def_property_readonly("record_times", [](const Scene& s) {
+        return adopt(std::vector<double>(s.record_times), {py::ssize_t(s.record_times.size())});
+      })
+      .def_property_readonly("seed", [](const Scene& s) { return s.seed; })
+      .def_property_readonly("force", &force_of, "dict: kind (none, constant, periodic), amplitude, omega, phase.")
+      .def_property_readonly("output_dir", [](const Scene& s) { return s.output_dir; })
+      .def("__repr__", [](const Scene& s) {
+        return fmt::format("<billiards.Scene '{}': {} particles on '{}', force {}, t = 0 .. {}>", s.file, s.particles,
+                           s.shape_name(), s.force.name(), s.time);
+      });
+
+  m.def("load_shape", &load_shape, "source"_a, py::kw_only(), "set"_a = py::none(), "name"_a = "shape dict",
+        R"(Reads and validates a 2-D shape.
+
+source: a shape file's path, or a dict with the file's keys ({"boundary": {"circle": ...}, ...}).
+set: parameter overrides {NAME: value or expression}, like `--set NAME=VALUE`.
+name: stands for the file in error messages when source is a dict.
+Raises billiards.InputError (a ValueError) naming file, line and problem.)");
+
+  m.def("load_scene", &load_scene, "source"_a, py::kw_only(), "particles"_a = py::none(), "time"_a = py::none(),
+        "omega"_a = py::none(), "record"_a = py::none(), "seed"_a = py::none(), "set"_a = py::none(),
+        "base_dir"_a = py::none(), "name"_a = "scene dict",
+        R"(Reads a scene: its shape, force, particles and record times.
+
+source: a scene file's path, or a dict with the file's keys; a dict's `shape` path (and `initial.csv`)
+is relative to base_dir (default: the current directory).
+particles, time, omega, record, seed, set: the overrides of `billiard run` (--particles, ...; record
+times get 0 and the end time added).
+Raises billiards.InputError naming file, line and problem.)");
+
+  m.def("info", [](const py::object& shape, const std::optional<py::dict>& set) {
+          if (py::isinstance<Shape>(shape)) return info(shape.cast<const Shape&>());
+          return info(*load_shape(shape, set, "shape dict"));
+        }, "shape"_a, py::kw_only(), "set"_a = py::none(),
+        R"(Exact geometry of a shape (a Shape, a path or a dict): the keys of `billiard info --json`
+(V, S, mean_free_path, boundary_tensor and bbox as 2x2 arrays, pieces, ...) plus description.)");
+
+  m.def("coefficients", &coefficients_of_scene, "scene"_a,
+        R"(The theory's prediction for a driven scene at its initial energy: the keys of
+`billiard coeffs --json` (mean_free_path, wall_integral, C, g1, g2, validity ratios, warnings, ...).)");
+  m.def("coefficients", &coefficients_of_shape, "shape"_a, py::kw_only(), "F"_a, "omega"_a, "E"_a, "mass"_a = 1.0,
+        "The same for a shape under the drive F cos(omega t) at energy E.");
+
+  m.def("fokker_planck_eta", py::vectorize(&analysis::fokker_planck_eta), "E"_a, "s"_a, "E0"_a, "dimension"_a = 2,
+        R"(The analytic Fokker-Planck density eta(E, s) from delta(E - E0), s = C t (the paper's eq. B4);
+broadcasts over arrays.)");
+  m.def("fokker_planck_cdf", py::vectorize(&analysis::fokker_planck_cdf), "E"_a, "s"_a, "E0"_a, "dimension"_a = 2,
+        "Its exact cumulative distribution (noncentral chi-squared); broadcasts over arrays.");
+  m.def("fokker_planck_moments", [](double s, double E0, int dimension) {
+          const auto mo = analysis::fokker_planck_exact_moments(s, E0, dimension);
+          return py::dict("mean"_a = mo.mean, "variance"_a = mo.variance, "mean_root"_a = mo.mean_root);
+        }, "s"_a, "E0"_a, "dimension"_a = 2, "Exact mean, variance of E and mean of sqrt(E) at s = C t.");
+  m.def("fokker_planck_numerical", &fokker_planck_numerical, "s"_a, "E0"_a, "dimension"_a = 2, py::kw_only(),
+        "cells"_a = 4000, "steps"_a = 2000,
+        R"(The Fokker-Planck equation solved numerically (finite volumes, Chang-Cooper fluxes, implicit
+Euler), as `billiard fp`: returns (E, eta, edges): the cell centres (cells,), the cell averages
+(len(s), cells) at each s = C t (positive, increasing), and the cell edges (cells + 1,).)");
+
+  m.def("run", &run, "scene"_a, py::kw_only(), "threads"_a = 0, "verify"_a = false,
+        R"(Runs the scene's ensemble, as `billiard run` does (same numbers for the same scene and seed,
+and for any number of threads), with the GIL released.
+
+threads: OpenMP threads (0: all cores).  verify: also check the midpoint of every free flight.
+Returns a dict: record_times (m,), energies (N, m) (NaN after an escape), collisions (N,),
+escaped (N,), seconds, collisions_per_second, threads, prediction (coefficients or None).
+The arrays own the C++ buffers: nothing is copied.)");
+
+  m.def("trajectory", &scene_trajectory, "scene"_a, py::kw_only(), "collisions"_a = 100, "particle"_a = 0,
+        R"(One particle of the scene's ensemble (its initial state is the one `run` gives it), bounce by
+bounce: a dict with times (K+1,), positions (K+1, 2), velocities (K+1, 2) just after each bounce,
+walls (K+1,) (the start has -1) and escaped.)");
+  m.def("trajectory", &shape_trajectory, "shape"_a, py::kw_only(), "collisions"_a = 100, "seed"_a = 1,
+        "particle"_a = 0, "speed"_a = 1.0,
+        "A free trajectory in a shape from a uniform random start (that of `billiard plot --trajectory` for "
+        "particle 0).");
+}
