@@ -115,16 +115,16 @@ Real reach_linear(const Real& tau0, const Real& l0, const Real& l1, const Real& 
 /// First τ ≥ τ0 at which |q0 + u (τ − τ0)|² crosses ρ², going outward (from inside) when
 /// `outward`, inward otherwise; τ0 itself when already on that side, +∞ when never.
 template <class Real, class V>
-Real reach_radius(const Real& tau0, const V& q0, const V& u, const Real& rho, bool outward) {
+[[gnu::always_inline]] inline Real reach_radius(const Real& tau0, const V& q0, const V& u, const Real& rho, bool outward) {
   using std::sqrt;
   const Real a = u.squaredNorm(), b = q0.dot(u), c = q0.squaredNorm() - rho * rho;
   if (outward ? c >= 0 : c <= 0) return tau0;
   if (a == 0) return never;
   const Real D = b * b - a * c;
   if (D < 0) return never;  // the guiding line misses the circle of radius ρ
+  if (!outward && b >= 0) return never;  // moving away
   const Real root = sqrt(D);
   if (outward) return tau0 + (b <= 0 ? Real((root - b) / a) : Real(-c / (b + root)));  // larger root
-  if (b >= 0) return never;                                                            // moving away
   return tau0 + c / (root - b);                                                        // smaller root
 }
 
