@@ -136,8 +136,12 @@ TEST_CASE("billiard run: picture: quivering-walls gives the lab picture's statis
   REQUIRE(moving.status == 0);
   const auto ja = nlohmann::json::parse(read_file(dir / "lab" / "summary.json"));
   const auto jb = nlohmann::json::parse(read_file(dir / "moving" / "summary.json"));
-  CHECK(std::abs(ja["mean_dE"].get<double>() - jb["mean_dE"].get<double>()) <= 0.1 * ja["se_mean_dE"].get<double>());
-  CHECK(std::abs(ja["var_dE"].get<double>() - jb["var_dE"].get<double>()) <= 0.1 * ja["se_var_dE"].get<double>());
+  // The pictures differ by rounding, which chaos amplifies: by t = 20 the k ≈ 2–4% of particles
+  // with the most collisions (≥ 9) have diverged, and contribute independent draws, so the two
+  // estimates differ by about √(2k/n) ≈ 0.2–0.3 SE (measured: 0.02 and 0.13 SE for two builds
+  // whose scans differ in rounding only).  A wrong bounce or energy shows as several SE.
+  CHECK(std::abs(ja["mean_dE"].get<double>() - jb["mean_dE"].get<double>()) <= 0.5 * ja["se_mean_dE"].get<double>());
+  CHECK(std::abs(ja["var_dE"].get<double>() - jb["var_dE"].get<double>()) <= 0.5 * ja["se_var_dE"].get<double>());
   const auto bad = billiard("run " + (dir / "bad.yaml").string() + common + (dir / "bad").string());
   CHECK(bad.status != 0);
   CHECK(bad.output.find("bad.yaml:5: 'picture' is one of: lab, quivering-walls") != std::string::npos);

@@ -172,7 +172,7 @@ class WallScan {
     auto tolerance = [&](double tau) {
       return w_.slack + 8 * scan::eps<double> * (scale_ + start + tau) + 4 * m_.tolerance * m_.scale;
     };
-    auto earliest = [](double tau, double) { return tau; };
+    auto earliest = [](double tau) { return tau; };
     auto in_span = [&](const Vec2& x) { return w_.within_span(x); };
     double resume = never;
     const double tau = scan::first_outward_crossing(

@@ -173,7 +173,7 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicSegmen
     const auto [x, v] = parabola(s, accel, tau);
     return Sample<Real>{w.normal.dot(x - w.a), w.normal.dot(v), abs(n_a), never, x};
   };
-  auto earliest = [](const Real& tau, const Real&) { return tau; };
+  auto earliest = [](const Real& tau) { return tau; };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
   const Real tau = first_outward_crossing(sample, earliest, in_span, tolerance, Real(t_end - s.t));
   return tau == never ? Real(never) : Real(s.t + tau);
@@ -198,7 +198,7 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicArcWal
     return Sample<Real>{sign * (rho - w.radius), sign * p.dot(v) / rho, 2 * Vmax * Vmax / max(rho, Real(1e-300)) + A,
                         h, x};
   };
-  auto earliest = [](const Real& tau, const Real&) { return tau; };
+  auto earliest = [](const Real& tau) { return tau; };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
   const Real tau = first_outward_crossing(sample, earliest, in_span, tolerance, Real(t_end - s.t));
   return tau == never ? Real(never) : Real(s.t + tau);
