@@ -48,7 +48,7 @@ BasicHit<typename Flight::Scalar> collision(const BasicTable<typename Flight::Sc
     for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, flight, s, w, best);
   }
   if (!best.found()) return best;
-  best.point = flight.advance(s, best.t).x;
+  best.point = table.project(best.wall, flight.advance(s, best.t).x);
   best.normal = table.normal_at(best.wall, best.point);
   return best;
 }

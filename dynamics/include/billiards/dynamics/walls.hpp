@@ -48,6 +48,12 @@ struct BasicSegmentWall {
     const Real tol = slack * dir.norm();
     return s >= -tol && s <= 1 + tol;
   }
+  /// The point of the segment nearest p: a hit point computed near a corner may lie past the
+  /// end by up to the span slack, beyond the neighbouring wall; projected, it never does.
+  V project(const V& p) const {
+    const Real s = std::clamp(Real((p - a).dot(dir)), Real(0), Real(1));
+    return a + s * (b - a);
+  }
 };
 
 template <class Real>
@@ -79,6 +85,14 @@ struct BasicArcWall {
     if (ccw_extent <= geometry::pi) return cross(from, u) >= -tol && cross(u, to) >= -tol;
     // More than a half circle: inside unless strictly within the complementary arc (< π).
     return !(cross(to, u) > tol && cross(u, from) > tol);
+  }
+  /// The point of the circle nearest p.  Hit points computed along a chord are off the circle
+  /// by rounding; left there, a whispering-gallery orbit (10⁴ bounces at a grazing angle)
+  /// random-walks outward until it is beyond the circle by more than the slack, and escapes.
+  V project(const V& p) const {
+    using std::sqrt;
+    const V u = p - center;
+    return center + u * Real(radius / sqrt(u.squaredNorm()));
   }
   /// Outward unit normal of the region at p.
   V normal_at(const V& p) const {
