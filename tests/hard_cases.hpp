@@ -23,20 +23,10 @@ inline geometry::Region2 shape(const std::string& name, const billiards::Overrid
   return geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml", set).region;
 }
 
-/// How far p lies beyond the region's walls: the largest signed distance beyond a wall whose
-/// span contains p's foot on it (negative inside, away from walls).  Stricter than
-/// Table::contains, whose tolerance is 1e-9 of the table's size.
+/// How far p lies outside the closed region (0 inside), by the table's independent
+/// crossing-number test without its tolerance (Table::contains allows 1e-9 of the size).
 inline double beyond(const dynamics::Table& table, const Vec2& p) {
-  double worst = -std::numeric_limits<double>::infinity();
-  for (const auto& w : table.segments()) {
-    const double d = w.normal.dot(p - w.a);  // within_span reads only p's coordinate along the wall
-    if (std::abs(d) < 1e-6 * (w.b - w.a).norm() && w.within_span(p)) worst = std::max(worst, d);
-  }
-  for (const auto& w : table.arcs()) {
-    const double d = (p - w.center).norm() - w.radius;
-    if (std::abs(d) < 1e-6 * w.radius && w.within_span(w.project(p))) worst = std::max(worst, w.focusing ? d : -d);
-  }
-  return worst;
+  return table.contains(p, 0) ? 0 : table.wall_distance(p);
 }
 
 /// What went wrong, if anything, along a double trajectory.

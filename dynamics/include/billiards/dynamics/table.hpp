@@ -35,7 +35,11 @@ class BasicTable {
 
   /// Is p inside the region?  Crossing-number test, independent of the collision kernels;
   /// points within `tolerance` of a wall count as inside.
-  bool contains(const V& p) const;
+  bool contains(const V& p) const { return contains(p, tolerance_); }
+  /// The same with another tolerance (0: the closed region, to the rounding of the test).
+  bool contains(const V& p, double tolerance) const;
+  /// Distance from p to the nearest wall.
+  Real wall_distance(const V& p) const;
   double tolerance() const { return tolerance_; }
   Vec2 lo() const { return lo_; }
   Vec2 hi() const { return hi_; }

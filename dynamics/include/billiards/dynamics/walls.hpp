@@ -51,8 +51,10 @@ struct BasicSegmentWall {
   /// The point of the segment nearest p: a hit point computed near a corner may lie past the
   /// end by up to the span slack, beyond the neighbouring wall; projected, it never does.
   V project(const V& p) const {
-    const Real s = std::clamp(Real((p - a).dot(dir)), Real(0), Real(1));
-    return a + s * (b - a);
+    const Real s = (p - a).dot(dir);
+    if (s <= 0) return a;
+    if (s >= 1) return b;
+    return p - normal * normal.dot(p - a);  // (not a + s (b − a), which rounds along the wall too)
   }
 };
 
