@@ -26,9 +26,11 @@ class BasicTable {
   std::size_t wall_count() const { return segments_.size() + arcs_.size(); }
   bool is_arc(int wall) const { return wall >= int(segments_.size()); }
   V normal_at(int wall, const V& p) const;
-  /// The point of the wall nearest p (hit points are projected: see walls.hpp).
-  V project(int wall, const V& p) const {
-    return is_arc(wall) ? arcs_[wall - segments_.size()].project(p) : segments_[wall].project(p);
+  /// The point of the wall nearest p (hit points are projected: see walls.hpp), and the
+  /// region's outward unit normal there.
+  std::pair<V, V> contact(int wall, const V& p) const {
+    if (is_arc(wall)) return arcs_[wall - segments_.size()].contact(p);
+    return {segments_[wall].project(p), segments_[wall].normal};
   }
   /// The source line of a wall in the shape file (for reports).
   const geometry::SourceRef& source_of(int wall) const { return sources_[wall]; }

@@ -13,6 +13,7 @@
 #include "billiards/geometry/pieces.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -88,13 +89,16 @@ struct BasicArcWall {
     // More than a half circle: inside unless strictly within the complementary arc (< π).
     return !(cross(to, u) > tol && cross(u, from) > tol);
   }
-  /// The point of the circle nearest p.  Hit points computed along a chord are off the circle
-  /// by rounding; left there, a whispering-gallery orbit (10⁴ bounces at a grazing angle)
-  /// random-walks outward until it is beyond the circle by more than the slack, and escapes.
-  V project(const V& p) const {
+  /// The point of the circle nearest p, and the region's outward unit normal there.  Hit
+  /// points computed along a chord are off the circle by rounding; left there, a
+  /// whispering-gallery orbit (10⁴ bounces at a grazing angle) random-walks outward until it is
+  /// beyond the circle by more than the slack, and escapes.  One square root and one division
+  /// give both (the normal alone, (p − c)/r, took two divisions).
+  std::pair<V, V> contact(const V& p) const {
     using std::sqrt;
     const V u = p - center;
-    return center + u * Real(radius / sqrt(u.squaredNorm()));
+    const V n = u * Real(1 / sqrt(u.squaredNorm()));
+    return {center + radius * n, focusing ? V(n) : V(-n)};
   }
   /// Outward unit normal of the region at p.
   V normal_at(const V& p) const {
