@@ -56,11 +56,22 @@ Real BasicFreeFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& 
   if (w.focusing) {
     // Region inside the circle: leave through the larger root.
     if (b >= 0 && c >= 0) return c <= near ? s.t : Real(never);  // on the circle moving out: now
-    // Outside the circle (a non-convex region) and moving in: a miss or a graze is no exit.
-    if (c > 0 && discriminant_sign(s.x, w.center, s.v, w.radius, w.radius2) <= 0) return never;
-    // Perpendicular (cancellation-free) discriminant b² − a c = a r² − (f × v)², clamped at
-    // 0 because a particle inside the circle always meets it.
-    const Real root = sqrt(max(Real(0), circle_discriminant(f, s.v, w.radius2)));
+    Real D;
+    if (c <= near) {
+      // Inside the circle, or on it to rounding (just reflected off it): b² − a c with c ≤ 0
+      // is a sum of two non-negative terms, so D ≥ b² and the far root is never before the
+      // end of the chord of a particle on the circle, −2b/a.  (The perpendicular form
+      // r²|v|² − (f × v)² cancels at grazing incidence: below an angle of 1e-8 it returned
+      // half that chord or less, the point where the particle moves along the tangent, and
+      // the particle then collided again at once, forever; found by the hard-cases suite.)
+      D = b * b - a * std::min(c, Real(0));
+    } else {
+      // Outside the circle (a non-convex region) and moving in: a miss or a graze is no exit.
+      if (discriminant_sign(s.x, w.center, s.v, w.radius, w.radius2) <= 0) return never;
+      // Far from the circle b² and a c nearly cancel: the perpendicular form is the accurate one.
+      D = max(Real(0), circle_discriminant(f, s.v, w.radius2));
+    }
+    const Real root = sqrt(D);
     dt = b <= 0 ? Real((root - b) / a) : Real(-c / (b + root));
   } else {
     // Region outside the circle: enter it through the smaller root, only when approaching.

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace billiards::dynamics {
 
@@ -92,17 +93,26 @@ auto BasicTable<Real>::normal_at(int wall, const V& p) const -> V {
 }
 
 template <class Real>
-bool BasicTable<Real>::contains(const V& p) const {
+bool BasicTable<Real>::contains(const V& p, double tolerance) const {
   int winding = 0;
   for (const auto& w : segments_) {
-    if (distance(w, p) <= tolerance_) return true;
+    if (distance(w, p) <= tolerance) return true;
     winding += crossings(w, p);
   }
   for (const auto& w : arcs_) {
-    if (distance(w, p) <= tolerance_) return true;
+    if (distance(w, p) <= tolerance) return true;
     winding += crossings(w, p);
   }
   return winding != 0;
+}
+
+template <class Real>
+Real BasicTable<Real>::wall_distance(const V& p) const {
+  using std::min;
+  Real d = std::numeric_limits<double>::infinity();
+  for (const auto& w : segments_) d = min(d, distance(w, p));
+  for (const auto& w : arcs_) d = min(d, distance(w, p));
+  return d;
 }
 
 template <class Real>

@@ -6,6 +6,7 @@
 #include "billiards/dynamics/table.hpp"
 
 #include <cmath>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -49,8 +50,7 @@ BasicHit<typename Flight::Scalar> collision(const BasicTable<typename Flight::Sc
     for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, flight, s, w, best);
   }
   if (!best.found()) return best;
-  best.point = flight.advance(s, best.t).x;
-  best.normal = table.normal_at(best.wall, best.point);
+  std::tie(best.point, best.normal) = table.contact(best.wall, flight.advance(s, best.t).x);
   return best;
 }
 

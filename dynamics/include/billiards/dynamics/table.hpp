@@ -26,12 +26,22 @@ class BasicTable {
   std::size_t wall_count() const { return segments_.size() + arcs_.size(); }
   bool is_arc(int wall) const { return wall >= int(segments_.size()); }
   V normal_at(int wall, const V& p) const;
+  /// The point of the wall nearest p (hit points are projected: see walls.hpp), and the
+  /// region's outward unit normal there.
+  std::pair<V, V> contact(int wall, const V& p) const {
+    if (is_arc(wall)) return arcs_[wall - segments_.size()].contact(p);
+    return {segments_[wall].project(p), segments_[wall].normal};
+  }
   /// The source line of a wall in the shape file (for reports).
   const geometry::SourceRef& source_of(int wall) const { return sources_[wall]; }
 
   /// Is p inside the region?  Crossing-number test, independent of the collision kernels;
   /// points within `tolerance` of a wall count as inside.
-  bool contains(const V& p) const;
+  bool contains(const V& p) const { return contains(p, tolerance_); }
+  /// The same with another tolerance (0: the closed region, to the rounding of the test).
+  bool contains(const V& p, double tolerance) const;
+  /// Distance from p to the nearest wall.
+  Real wall_distance(const V& p) const;
   double tolerance() const { return tolerance_; }
   Vec2 lo() const { return lo_; }
   Vec2 hi() const { return hi_; }

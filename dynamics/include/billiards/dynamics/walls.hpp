@@ -13,6 +13,7 @@
 #include "billiards/geometry/pieces.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 
@@ -48,6 +49,14 @@ struct BasicSegmentWall {
     const Real tol = slack * dir.norm();
     return s >= -tol && s <= 1 + tol;
   }
+  /// The point of the segment nearest p: a hit point computed near a corner may lie past the
+  /// end by up to the span slack, beyond the neighbouring wall; projected, it never does.
+  V project(const V& p) const {
+    const Real s = (p - a).dot(dir);
+    if (s <= 0) return a;
+    if (s >= 1) return b;
+    return p - normal * normal.dot(p - a);  // (not a + s (b − a), which rounds along the wall too)
+  }
 };
 
 template <class Real>
@@ -79,6 +88,17 @@ struct BasicArcWall {
     if (ccw_extent <= geometry::pi) return cross(from, u) >= -tol && cross(u, to) >= -tol;
     // More than a half circle: inside unless strictly within the complementary arc (< π).
     return !(cross(to, u) > tol && cross(u, from) > tol);
+  }
+  /// The point of the circle nearest p, and the region's outward unit normal there.  Hit
+  /// points computed along a chord are off the circle by rounding; left there, a
+  /// whispering-gallery orbit (10⁴ bounces at a grazing angle) random-walks outward until it is
+  /// beyond the circle by more than the slack, and escapes.  One square root and one division
+  /// give both (the normal alone, (p − c)/r, took two divisions).
+  std::pair<V, V> contact(const V& p) const {
+    using std::sqrt;
+    const V u = p - center;
+    const V n = u * Real(1 / sqrt(u.squaredNorm()));
+    return {center + radius * n, focusing ? V(n) : V(-n)};
   }
   /// Outward unit normal of the region at p.
   V normal_at(const V& p) const {
