@@ -410,7 +410,7 @@ boundary in 3-D, ...) plus description.)");
   m.def("coefficients", &coefficients_of_shape<Shape>, "shape"_a, py::kw_only(), "F"_a, "omega"_a, "E"_a,
         "mass"_a = 1.0, "The same for a shape under the drive F cos(omega t) at energy E (F of the shape's dimension).");
   m.def("coefficients", &coefficients_of_shape<Shape3>, "shape"_a, py::kw_only(), "F"_a, "omega"_a, "E"_a,
-        "mass"_a = 1.0);
+        "mass"_a = 1.0, "The same for a 3-D shape (F has 3 components; the formulas in d = 3).");
 
   m.def("fokker_planck_eta", py::vectorize(&analysis::fokker_planck_eta), "E"_a, "s"_a, "E0"_a, "dimension"_a = 2,
         R"(The analytic Fokker-Planck density eta(E, s) from delta(E - E0), s = C t (the paper's eq. B4);
@@ -445,5 +445,6 @@ walls (K+1,) (the start has -1) and escaped.)");
         "A free trajectory in a shape from a uniform random start (that of `billiard plot --trajectory` for "
         "particle 0 in 2-D).");
   m.def("trajectory", &shape_trajectory<dynamics3::FreeFlight3, Shape3>, "shape"_a, py::kw_only(),
-        "collisions"_a = 100, "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0);
+        "collisions"_a = 100, "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
+        "The same in a 3-D shape: positions and velocities are (K+1, 3).");
 }
