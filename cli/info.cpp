@@ -4,7 +4,7 @@
 
 #include "billiards/geometry.hpp"
 #include "billiards/geometry/shape_info.hpp"
-#include "billiards/geometry3/shape3_file.hpp"
+#include "billiards/geometry3/shape3_info.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -17,39 +17,24 @@ namespace {
 
 /// `billiard info` for a 3-D shape file (`dimension: 3`).
 void print_info3(const std::string& path, const Overrides& set, bool json) {
-  using namespace geometry3;
-  const auto shape = load_shape3(path, set);
-  const auto m = measures_of(shape.region);
-  const auto& T = m.boundary_tensor;
-  nlohmann::json boundary = std::visit(
-      [](const auto& b) -> nlohmann::json {
-        using B = std::decay_t<decltype(b)>;
-        if constexpr (std::is_same_v<B, ConvexPolyhedron>) return {{"kind", "polyhedron"}, {"faces", b.planes.size()}};
-        else if constexpr (std::is_same_v<B, TriangleMesh>)
-          return {{"kind", "mesh"}, {"mesh_file", b.file}, {"triangles", b.triangles.size()}, {"vertices", b.vertices.size()}};
-        else return {{"kind", "sphere"}, {"center", {b.center.x(), b.center.y(), b.center.z()}}, {"radius", b.radius}};
-      },
-      shape.region.outer);
-  const nlohmann::json info = {
-      {"name", shape.region.name}, {"file", path}, {"dimension", 3}, {"V", m.volume}, {"S", m.surface},
-      {"mean_free_path", geometry::mean_free_path(m)},
-      {"boundary_tensor", {{T(0, 0), T(0, 1), T(0, 2)}, {T(1, 0), T(1, 1), T(1, 2)}, {T(2, 0), T(2, 1), T(2, 2)}}},
-      {"bbox", {{m.bbox_lo(0), m.bbox_lo(1), m.bbox_lo(2)}, {m.bbox_hi(0), m.bbox_hi(1), m.bbox_hi(2)}}},
-      {"parameters", shape.parameters}, {"holes", shape.region.holes.size()}, {"boundary", boundary}};
+  const auto shape = geometry3::load_shape3(path, set);
+  const auto info = geometry3::shape_info(shape);
   if (json) {
     std::cout << info.dump(2) << "\n";
     return;
   }
+  const auto T = info["boundary_tensor"].get<std::vector<std::vector<double>>>();
+  const auto lo = info["bbox"][0].get<std::vector<double>>(), hi = info["bbox"][1].get<std::vector<double>>();
   if (!shape.description.empty()) fmt::print("{}\n\n", shape.description);
   fmt::print("shape            {} ({}), dimension 3\n", shape.region.name, path);
-  fmt::print("volume V         {:.15g}\n", m.volume);
-  fmt::print("surface S        {:.15g}\n", m.surface);
-  fmt::print("mean free path   {:.15g}   (lambda = 4 V / S)\n", geometry::mean_free_path(m));
+  fmt::print("volume V         {:.15g}\n", info["V"].get<double>());
+  fmt::print("surface S        {:.15g}\n", info["S"].get<double>());
+  fmt::print("mean free path   {:.15g}   (lambda = 4 V / S)\n", info["mean_free_path"].get<double>());
   fmt::print("boundary tensor  [[{:.12g}, {:.12g}, {:.12g}], [{:.12g}, {:.12g}, {:.12g}], [{:.12g}, {:.12g}, {:.12g}]]"
-             "   (int n n^T dS)\n", T(0, 0), T(0, 1), T(0, 2), T(1, 0), T(1, 1), T(1, 2), T(2, 0), T(2, 1), T(2, 2));
-  fmt::print("bounding box     [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]\n", m.bbox_lo(0), m.bbox_hi(0),
-             m.bbox_lo(1), m.bbox_hi(1), m.bbox_lo(2), m.bbox_hi(2));
-  fmt::print("boundary         {}\n", boundary.dump());
+             "   (int n n^T dS)\n", T[0][0], T[0][1], T[0][2], T[1][0], T[1][1], T[1][2], T[2][0], T[2][1], T[2][2]);
+  fmt::print("bounding box     [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]\n", lo[0], hi[0], lo[1], hi[1],
+             lo[2], hi[2]);
+  fmt::print("boundary         {}\n", info["boundary"].dump());
   fmt::print("holes            {} (balls)\n", shape.region.holes.size());
 }
 

@@ -1,6 +1,6 @@
-// The Python module `billiards` (pybind11): shapes and scenes from files or dicts, their exact
-// geometry and the theory's coefficients, the Fokker–Planck solutions, ensemble runs and single
-// trajectories.  It calls the same library functions as the `billiard` program, so the same
+// The Python module `billiards` (pybind11): 2-D and 3-D shapes and scenes from files or dicts,
+// their exact geometry and the theory's coefficients, the Fokker–Planck solutions, ensemble runs
+// and single trajectories.  It calls the same library functions as the `billiard` program, so the same
 // scene and seed give the same numbers, bit for bit.  Arrays come out as numpy arrays that own
 // the C++ buffers (no copies); runs release the GIL.
 #include "billiards/analysis/coefficients.hpp"
@@ -10,6 +10,7 @@
 #include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/shape_file.hpp"
 #include "billiards/geometry/shape_info.hpp"
+#include "billiards/geometry3/shape3_info.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -31,6 +32,7 @@ namespace billiards::python {
 namespace {
 
 using geometry::Shape;
+using geometry3::Shape3;
 using dynamics::Scene;
 
 // --- conversions ---------------------------------------------------------------------------
@@ -75,12 +77,20 @@ py::array_t<double> vector_array(const Eigen::VectorXd& v) {
 
 // --- shapes and scenes ---------------------------------------------------------------------
 
-std::shared_ptr<Shape> load_shape(const py::object& source, const std::optional<py::dict>& set,
-                                  const std::string& name) {
+/// A Shape or a Shape3, as the file or dict's `dimension` says.
+py::object load_shape(const py::object& source, const std::optional<py::dict>& set,
+                      const std::optional<py::object>& base_dir, const std::string& name) {
   const auto ov = overrides_of(set);
-  if (py::isinstance<py::dict>(source))
-    return std::make_shared<Shape>(geometry::parse_shape(yaml_text_of(source), name, ov));
-  return std::make_shared<Shape>(geometry::load_shape(path_of(source), ov));
+  if (py::isinstance<py::dict>(source)) {
+    const std::string text = yaml_text_of(source);
+    if (geometry3::parse_shape_dimension(text, name) == 3)
+      return py::cast(std::make_shared<Shape3>(
+          geometry3::parse_shape3(text, name, ov, base_dir ? path_of(*base_dir) : ".")));
+    return py::cast(std::make_shared<Shape>(geometry::parse_shape(text, name, ov)));
+  }
+  const std::string path = path_of(source);
+  if (geometry3::shape_dimension(path) == 3) return py::cast(std::make_shared<Shape3>(geometry3::load_shape3(path, ov)));
+  return py::cast(std::make_shared<Shape>(geometry::load_shape(path, ov)));
 }
 
 std::shared_ptr<Scene> load_scene(const py::object& source, std::optional<std::size_t> particles,
@@ -102,14 +112,67 @@ std::shared_ptr<Scene> load_scene(const py::object& source, std::optional<std::s
   return std::make_shared<Scene>(dynamics::load_scene(path_of(source), ov));
 }
 
-py::dict info(const Shape& shape) {
-  py::dict d = to_python(geometry::shape_info(shape));
-  const auto m = geometry::measures_of(shape.region);
-  const auto& T = m.boundary_tensor;
-  d["boundary_tensor"] = adopt(std::vector<double>{T(0, 0), T(0, 1), T(1, 0), T(1, 1)}, {2, 2});
-  d["bbox"] = adopt(std::vector<double>{m.bbox_lo(0), m.bbox_lo(1), m.bbox_hi(0), m.bbox_hi(1)}, {2, 2});
+/// The keys of `billiard info --json` (geometry::shape_info or geometry3::shape_info), with the
+/// tensor and the box as arrays (the JSON's shortest round-trip doubles: the same numbers).
+template <class S>
+py::dict info(const S& shape) {
+  py::dict d = to_python(shape_info(shape));
+  const auto array = py::module_::import("numpy").attr("array");
+  d["boundary_tensor"] = array(d["boundary_tensor"], "dtype"_a = "float64");
+  d["bbox"] = array(d["bbox"], "dtype"_a = "float64");
   d["description"] = shape.description;
   return d;
+}
+
+py::dict info_of(const py::object& shape) {
+  if (py::isinstance<Shape3>(shape)) return info(shape.cast<const Shape3&>());
+  return info(shape.cast<const Shape&>());
+}
+
+/// A convex face's corners: clipping leaves a corner where more than three planes meet once per
+/// plane, and those repeats would make triangles of zero area.
+std::vector<geometry3::Vec3> corners_of(const std::vector<geometry3::Vec3>& face) {
+  std::vector<geometry3::Vec3> out;
+  for (const auto& v : face)
+    if (out.empty() || v != out.back()) out.push_back(v);
+  while (out.size() > 1 && out.back() == out.front()) out.pop_back();
+  return out;
+}
+
+/// The flat walls of a 3-D shape for drawing: vertices (n, 3) and triangles (m, 3) of vertex
+/// indices, counter-clockwise seen from outside (a mesh's own; a polyhedron's faces fanned from
+/// their first corner, each face with its own vertices; none for a sphere).
+py::tuple mesh_of(const Shape3& shape) {
+  using namespace geometry3;
+  std::vector<double> xyz;
+  std::vector<int> triangles;
+  const auto add_vertex = [&](const Vec3& p) { xyz.insert(xyz.end(), {p.x(), p.y(), p.z()}); };
+  if (const auto* p = std::get_if<ConvexPolyhedron>(&shape.region.outer)) {
+    for (const auto& face : p->faces) {
+      const int first = int(xyz.size() / 3);
+      const auto corners = corners_of(face);
+      for (const auto& v : corners) add_vertex(v);
+      for (int k = 1; k + 1 < int(corners.size()); ++k)
+        triangles.insert(triangles.end(), {first, first + k, first + k + 1});
+    }
+  } else if (const auto* m = std::get_if<TriangleMesh>(&shape.region.outer)) {
+    for (const auto& v : m->vertices) add_vertex(v);
+    for (const auto& t : m->triangles) triangles.insert(triangles.end(), t.begin(), t.end());
+  }
+  const auto n = py::ssize_t(xyz.size() / 3), k = py::ssize_t(triangles.size() / 3);
+  return py::make_tuple(adopt(std::move(xyz), {n, 3}), adopt(std::move(triangles), {k, 3}));
+}
+
+/// The spherical walls of a 3-D shape: the outer sphere (outer = True) and the balls.
+py::list spheres_of(const Shape3& shape) {
+  py::list out;
+  const auto add = [&](const geometry3::Ball& b, bool outer) {
+    out.append(py::dict("center"_a = adopt(std::vector<double>{b.center.x(), b.center.y(), b.center.z()}, {3}),
+                        "radius"_a = b.radius, "outer"_a = outer));
+  };
+  if (const auto* b = std::get_if<geometry3::Ball>(&shape.region.outer)) add(*b, true);
+  for (const auto& b : shape.region.holes) add(b, false);
+  return out;
 }
 
 py::dict force_of(const Scene& scene) {
@@ -128,15 +191,17 @@ py::object coefficients_of_scene(const Scene& scene) {
   return to_python(nlohmann::json(*c));
 }
 
-py::object coefficients_of_shape(const Shape& shape, const std::vector<double>& F, double omega, double E,
-                                 double mass) {
-  if (F.size() != 2) throw py::value_error("F must have 2 components");
+/// For a Shape or a Shape3 (measures_of of its region's dimension).
+template <class S>
+py::object coefficients_of_shape(const S& shape, const std::vector<double>& F, double omega, double E, double mass) {
+  const auto m = measures_of(shape.region);
+  if (F.size() != std::size_t(m.dimension)) throw py::value_error(fmt::format("F must have {} components", m.dimension));
   if (!(omega > 0) || !(E > 0) || !(mass > 0)) throw py::value_error("omega, E and mass must be positive");
   analysis::Drive drive;
-  drive.F = Eigen::Vector2d(F[0], F[1]);
+  drive.F = Eigen::Map<const Eigen::VectorXd>(F.data(), Eigen::Index(F.size()));
   drive.omega = omega;
   drive.mass = mass;
-  return to_python(nlohmann::json(analysis::coefficients(geometry::measures_of(shape.region), drive, E)));
+  return to_python(nlohmann::json(analysis::coefficients(m, drive, E)));
 }
 
 py::tuple fokker_planck_numerical(const std::vector<double>& s, double E0, int dimension, int cells, int steps) {
@@ -224,12 +289,28 @@ py::dict scene_trajectory(const Scene& scene, std::size_t collisions, std::size_
   });
 }
 
-py::dict shape_trajectory(const Shape& shape, std::size_t collisions, std::uint64_t seed, std::size_t particle,
+/// A free trajectory in a Shape (Flight = FreeFlight) or a Shape3 (FreeFlight3).
+template <class Flight, class S>
+py::dict shape_trajectory(const S& shape, std::size_t collisions, std::uint64_t seed, std::size_t particle,
                           double speed) {
   if (!(speed > 0)) throw py::value_error("speed must be positive");
-  const dynamics::Table table(shape.region);
+  const dynamics::TableFor<Flight> table(shape.region);
   dynamics::ParticleRng rng(seed, particle);
-  return trace(table, dynamics::FreeFlight{}, dynamics::sample_microcanonical(table, speed, rng), collisions);
+  return trace(table, Flight{}, sample_microcanonical(table, speed, rng), collisions);
+}
+
+/// What Shape and Shape3 have in common.
+template <class S>
+void def_shape_properties(py::class_<S, std::shared_ptr<S>>& c, int dimension, const char* type) {
+  c.def_property_readonly("name", [](const S& s) { return s.region.name; })
+      .def_property_readonly("file", [](const S& s) { return s.region.origin.file; })
+      .def_property_readonly("dimension", [dimension](const S&) { return dimension; })
+      .def_property_readonly("description", [](const S& s) { return s.description; },
+                             "The leading comment block of the shape file.")
+      .def_property_readonly("parameters", [](const S& s) { return s.parameters; },
+                             "Parameter values after overrides.")
+      .def("info", &info<S>, "Same as billiards.info(shape).")
+      .def("__repr__", [type](const S& s) { return fmt::format("<billiards.{} '{}'>", type, s.region.name); });
 }
 
 }  // namespace
@@ -239,19 +320,13 @@ py::dict shape_trajectory(const Shape& shape, std::size_t collisions, std::uint6
 PYBIND11_MODULE(billiards, m) {
   using namespace billiards;
   using namespace billiards::python;
-  m.doc() = "Billiards: exact geometry of 2-D tables, deterministic ensembles of driven particles, and the "
-            "energy-diffusion theory of Hodson & Jarzynski (the library behind the `billiard` program).";
+  m.doc() = "Billiards: exact geometry of 2-D tables and 3-D regions, deterministic ensembles of driven particles, "
+            "and the energy-diffusion theory of Hodson & Jarzynski (the library behind the `billiard` program).";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
 
-  py::class_<Shape, std::shared_ptr<Shape>>(m, "Shape", "A validated 2-D table (see load_shape).")
-      .def_property_readonly("name", [](const Shape& s) { return s.region.name; })
-      .def_property_readonly("file", [](const Shape& s) { return s.region.origin.file; })
-      .def_property_readonly("description", [](const Shape& s) { return s.description; },
-                             "The leading comment block of the shape file.")
-      .def_property_readonly("parameters", [](const Shape& s) { return s.parameters; },
-                             "Parameter values after overrides.")
-      .def("info", &info, "Same as billiards.info(shape).")
-      .def("outline", [](const Shape& s, double arc_step) {
+  py::class_<Shape, std::shared_ptr<Shape>> shape2_class(m, "Shape", "A validated 2-D table (see load_shape).");
+  def_shape_properties(shape2_class, 2, "Shape");
+  shape2_class.def("outline", [](const Shape& s, double arc_step) {
              py::list loops;
              for (const auto* loop : s.region.loops()) {
                const auto pts = geometry::outline_of(*loop, arc_step);
@@ -262,17 +337,28 @@ PYBIND11_MODULE(billiards, m) {
              return loops;
            }, py::kw_only(), "arc_step"_a = geometry::pi / 360,
            "The boundary for drawing: a closed polyline (n, 2) per loop, outer first (the vertices of "
-           "`billiard plot`; arcs get one every arc_step radians).")
-      .def("__repr__", [](const Shape& s) { return fmt::format("<billiards.Shape '{}'>", s.region.name); });
+           "`billiard plot`; arcs get one every arc_step radians).");
+
+  py::class_<Shape3, std::shared_ptr<Shape3>> shape3_class(
+      m, "Shape3", "A validated 3-D region: a polyhedron, a triangle mesh or a sphere, minus balls (see load_shape).");
+  def_shape_properties(shape3_class, 3, "Shape3");
+  shape3_class.def("mesh", &mesh_of,
+             R"(The flat walls for drawing: (vertices (n, 3), triangles (m, 3) of vertex indices, counter-clockwise
+seen from outside).  A mesh's own triangles; a polyhedron's faces fanned into triangles (each face
+with its own vertices); empty arrays for a sphere.)")
+      .def("spheres", &spheres_of,
+           "The spherical walls: a list of {center (3,), radius, outer}; outer is True for the sphere the region "
+           "is inside, False for a ball (a hole).");
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A shape, a force, particles and what to run (see load_scene).")
       .def_property_readonly("file", [](const Scene& s) { return s.file; })
       .def_property_readonly("text", [](const Scene& s) { return s.text; }, "The scene's YAML text.")
       .def_property_readonly("dimension", [](const Scene& s) { return s.dimension; })
-      .def_property_readonly("shape", [](const Scene& s) {
-        if (s.dimension != 2) throw py::value_error("the Python module has no 3-D Shape yet");
-        return std::make_shared<Shape>(s.shape);
-      }, "The scene's 2-D Shape.")
+      .def_property_readonly("shape", [](const std::shared_ptr<Scene>& s) {
+        // Views into the scene (it stays alive with them): a large mesh is not copied.
+        if (s->dimension == 3) return py::cast(std::shared_ptr<Shape3>(s, &s->shape3));
+        return py::cast(std::shared_ptr<Shape>(s, &s->shape));
+      }, "The scene's Shape (2-D) or Shape3 (3-D).")
       .def_property_readonly("mass", [](const Scene& s) { return s.mass; })
       .def_property_readonly("energy", [](const Scene& s) { return s.energy; },
                              "Initial energy of the microcanonical ensemble (0 with an initial-condition file).")
@@ -289,11 +375,13 @@ PYBIND11_MODULE(billiards, m) {
                            s.shape_name(), s.force.name(), s.time);
       });
 
-  m.def("load_shape", &load_shape, "source"_a, py::kw_only(), "set"_a = py::none(), "name"_a = "shape dict",
-        R"(Reads and validates a 2-D shape.
+  m.def("load_shape", &load_shape, "source"_a, py::kw_only(), "set"_a = py::none(), "base_dir"_a = py::none(),
+        "name"_a = "shape dict",
+        R"(Reads and validates a shape: a Shape (2-D), or a Shape3 when the file or dict has `dimension: 3`.
 
 source: a shape file's path, or a dict with the file's keys ({"boundary": {"circle": ...}, ...}).
 set: parameter overrides {NAME: value or expression}, like `--set NAME=VALUE`.
+base_dir: the folder a dict's `mesh:` file is relative to (default: the current directory).
 name: stands for the file in error messages when source is a dict.
 Raises billiards.InputError (a ValueError) naming file, line and problem.)");
 
@@ -308,18 +396,21 @@ particles, time, omega, record, seed, set: the overrides of `billiard run` (--pa
 times get 0 and the end time added).
 Raises billiards.InputError naming file, line and problem.)");
 
-  m.def("info", [](const py::object& shape, const std::optional<py::dict>& set) {
-          if (py::isinstance<Shape>(shape)) return info(shape.cast<const Shape&>());
-          return info(*load_shape(shape, set, "shape dict"));
-        }, "shape"_a, py::kw_only(), "set"_a = py::none(),
-        R"(Exact geometry of a shape (a Shape, a path or a dict): the keys of `billiard info --json`
-(V, S, mean_free_path, boundary_tensor and bbox as 2x2 arrays, pieces, ...) plus description.)");
+  m.def("info", [](const py::object& shape, const std::optional<py::dict>& set, const std::optional<py::object>& base_dir) {
+          if (py::isinstance<Shape>(shape) || py::isinstance<Shape3>(shape)) return info_of(shape);
+          return info_of(load_shape(shape, set, base_dir, "shape dict"));
+        }, "shape"_a, py::kw_only(), "set"_a = py::none(), "base_dir"_a = py::none(),
+        R"(Exact geometry of a shape (a Shape, a Shape3, a path or a dict): the keys of `billiard info --json`
+(V, S, mean_free_path, boundary_tensor as a d x d array, bbox as a 2 x d array, and pieces in 2-D or
+boundary in 3-D, ...) plus description.)");
 
   m.def("coefficients", &coefficients_of_scene, "scene"_a,
         R"(The theory's prediction for a driven scene at its initial energy: the keys of
 `billiard coeffs --json` (mean_free_path, wall_integral, C, g1, g2, validity ratios, warnings, ...).)");
-  m.def("coefficients", &coefficients_of_shape, "shape"_a, py::kw_only(), "F"_a, "omega"_a, "E"_a, "mass"_a = 1.0,
-        "The same for a shape under the drive F cos(omega t) at energy E.");
+  m.def("coefficients", &coefficients_of_shape<Shape>, "shape"_a, py::kw_only(), "F"_a, "omega"_a, "E"_a,
+        "mass"_a = 1.0, "The same for a shape under the drive F cos(omega t) at energy E (F of the shape's dimension).");
+  m.def("coefficients", &coefficients_of_shape<Shape3>, "shape"_a, py::kw_only(), "F"_a, "omega"_a, "E"_a,
+        "mass"_a = 1.0, "The same for a 3-D shape (F has 3 components; the formulas in d = 3).");
 
   m.def("fokker_planck_eta", py::vectorize(&analysis::fokker_planck_eta), "E"_a, "s"_a, "E0"_a, "dimension"_a = 2,
         R"(The analytic Fokker-Planck density eta(E, s) from delta(E - E0), s = C t (the paper's eq. B4);
@@ -347,10 +438,13 @@ The arrays own the C++ buffers: nothing is copied.)");
 
   m.def("trajectory", &scene_trajectory, "scene"_a, py::kw_only(), "collisions"_a = 100, "particle"_a = 0,
         R"(One particle of the scene's ensemble (its initial state is the one `run` gives it), bounce by
-bounce: a dict with times (K+1,), positions (K+1, 2), velocities (K+1, 2) just after each bounce,
+bounce: a dict with times (K+1,), positions (K+1, d), velocities (K+1, d) just after each bounce,
 walls (K+1,) (the start has -1) and escaped.)");
-  m.def("trajectory", &shape_trajectory, "shape"_a, py::kw_only(), "collisions"_a = 100, "seed"_a = 1,
-        "particle"_a = 0, "speed"_a = 1.0,
+  m.def("trajectory", &shape_trajectory<dynamics::FreeFlight, Shape>, "shape"_a, py::kw_only(), "collisions"_a = 100,
+        "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
         "A free trajectory in a shape from a uniform random start (that of `billiard plot --trajectory` for "
-        "particle 0).");
+        "particle 0 in 2-D).");
+  m.def("trajectory", &shape_trajectory<dynamics3::FreeFlight3, Shape3>, "shape"_a, py::kw_only(),
+        "collisions"_a = 100, "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
+        "The same in a 3-D shape: positions and velocities are (K+1, 3).");
 }

@@ -214,8 +214,6 @@ def test_trajectory_in_3d_hits_the_walls(source):
     on_cube = np.abs(np.max(np.abs(x), axis=1) - 0.5) < 1e-12   # L = 1
     on_ball = np.abs(np.linalg.norm(x, axis=1) - 0.25) < 1e-12  # R = 1/4
     assert (on_cube | on_ball).all() and on_cube.any() and on_ball.any()
-    with pytest.raises(ValueError, match="3-D"):
-        scene.shape
 
 
 def test_trajectory_is_the_runs_particle(source):

@@ -98,7 +98,8 @@ void validate_holes(const Region3& region) {
 
 }  // namespace
 
-Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const Overrides& overrides) {
+Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const Overrides& overrides,
+                    const std::string& mesh_dir) {
   const YAML::Node doc = load_yaml(yaml_text, name);
   Expressions expr;
   YamlReader r(name, expr);
@@ -116,7 +117,7 @@ Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const
   Region3& region = shape.region;
   region.origin = {name, 1};
   region.name = doc["name"] ? doc["name"].as<std::string>() : std::filesystem::path(name).stem().string();
-  const Reader3 reader(r, std::filesystem::path(name).parent_path());
+  const Reader3 reader(r, mesh_dir.empty() ? std::filesystem::path(name).parent_path() : std::filesystem::path(mesh_dir));
   region.outer = reader.boundary(r.required(doc, "boundary", "a shape file"));
   if (const YAML::Node holes = doc["holes"]) {
     if (!holes.IsSequence()) r.fail(holes, "'holes' must be a list");
@@ -133,12 +134,14 @@ Shape3 load_shape3(const std::string& path, const Overrides& overrides) {
   return parse_shape3(read_input_file(path, "shape file"), path, overrides);
 }
 
-int shape_dimension(const std::string& path) {
-  const YAML::Node doc = load_yaml(read_input_file(path, "shape file"), path);
+int shape_dimension(const std::string& path) { return parse_shape_dimension(read_input_file(path, "shape file"), path); }
+
+int parse_shape_dimension(const std::string& yaml_text, const std::string& name) {
+  const YAML::Node doc = load_yaml(yaml_text, name);
   if (!doc.IsMap() || !doc["dimension"]) return 2;
   const YAML::Node d = doc["dimension"];
   if (d.IsScalar() && (d.Scalar() == "2" || d.Scalar() == "3")) return std::stoi(d.Scalar());
-  throw InputError(path, d.Mark().line + 1, "'dimension' must be 2 or 3");
+  throw InputError(name, d.Mark().line + 1, "'dimension' must be 2 or 3");
 }
 
 }  // namespace billiards::geometry3
