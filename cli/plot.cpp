@@ -5,9 +5,8 @@
 #include "options.hpp"
 #include "python.hpp"
 
-#include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/random.hpp"
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/scene_run.hpp"
 #include "billiards/geometry.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
@@ -38,16 +37,22 @@ nlohmann::json loop_points(const geometry::Loop& loop) {
   return pts;
 }
 
-/// The start point and the K collision points of one free trajectory.
-nlohmann::json free_trajectory(const geometry::Region2& region, int collisions, std::uint64_t seed) {
-  const dynamics::Table table(region);
+/// A point as a JSON list of its coordinates (2-D or 3-D).
+template <class V>
+nlohmann::json point_json(const V& p) {
+  return std::vector<double>(p.data(), p.data() + p.size());
+}
+
+/// The start point and the K collision points of one free trajectory, 2-D (`Flight` =
+/// FreeFlight) or 3-D (FreeFlight3): the walk of `billiards.trajectory` in Python.
+template <class Flight, class Region>
+nlohmann::json free_trajectory(const Region& region, int collisions, std::uint64_t seed) {
+  const dynamics::TableFor<Flight> table(region);
   dynamics::ParticleRng rng(seed, 0);
-  const auto s = dynamics::sample_microcanonical(table, 1.0, rng);
-  nlohmann::json pts = nlohmann::json::array({{s.x.x(), s.x.y()}});
-  const std::size_t made = dynamics::evolve(table, dynamics::FreeFlight{}, s, collisions,
-                                            [&](const dynamics::Hit&, const dynamics::State& after) {
-                                              pts.push_back({after.x.x(), after.x.y()});
-                                            });
+  const auto s = sample_microcanonical(table, 1.0, rng);
+  nlohmann::json pts = nlohmann::json::array({point_json(s.x)});
+  const std::size_t made = dynamics::evolve(table, Flight{}, s, collisions,
+                                            [&](const auto&, const auto& after) { pts.push_back(point_json(after.x)); });
   if (made < std::size_t(collisions))
     throw std::runtime_error(fmt::format("the trajectory escaped the region after {} collisions", made));
   return pts;
@@ -68,42 +73,29 @@ nlohmann::json shape3_data(const std::string& path, const Overrides& set, int co
   constexpr std::size_t max_faces = 20000;
   const auto shape = load_shape3(path, set);
   const auto& region = shape.region;
-  const auto point = [](const Vec3& p) { return nlohmann::json{p.x(), p.y(), p.z()}; };
   nlohmann::json faces = nlohmann::json::array(), spheres = nlohmann::json::array();
   const auto sphere = [&](const Ball& b, bool outer) {
-    spheres.push_back({{"center", point(b.center)}, {"radius", b.radius}, {"outer", outer}});
+    spheres.push_back({{"center", point_json(b.center)}, {"radius", b.radius}, {"outer", outer}});
   };
   if (const auto* p = std::get_if<ConvexPolyhedron>(&region.outer)) {
     for (const auto& face : p->faces) {
       nlohmann::json f = nlohmann::json::array();
-      for (const auto& v : face) f.push_back(point(v));
+      for (const auto& v : face) f.push_back(point_json(v));
       faces.push_back(f);
     }
   } else if (const auto* m = std::get_if<TriangleMesh>(&region.outer)) {
     const std::size_t step = (m->triangles.size() + max_faces - 1) / max_faces;
     for (std::size_t i = 0; i < m->triangles.size(); i += step) {
       const auto& t = m->triangles[i];
-      faces.push_back({point(m->vertices[t[0]]), point(m->vertices[t[1]]), point(m->vertices[t[2]])});
+      faces.push_back({point_json(m->vertices[t[0]]), point_json(m->vertices[t[1]]), point_json(m->vertices[t[2]])});
     }
   } else {
     sphere(std::get<Ball>(region.outer), true);
   }
   for (const Ball& b : region.holes) sphere(b, false);
 
-  nlohmann::json trajectory = nlohmann::json::array();
-  if (collisions > 0) {
-    const dynamics3::Table3 table(region);
-    dynamics::ParticleRng rng(seed, 0);
-    auto s = dynamics3::sample_microcanonical(table, 1.0, rng);
-    trajectory.push_back(point(s.x));
-    for (int k = 0; k < collisions; ++k) {
-      const auto hit = table.collision(s);
-      if (!hit.found())
-        throw std::runtime_error(fmt::format("the trajectory escaped the region after {} collisions", k));
-      dynamics3::bounce(s, hit, 1.0);
-      trajectory.push_back(point(s.x));
-    }
-  }
+  const auto trajectory = collisions > 0 ? free_trajectory<dynamics3::FreeFlight3>(region, collisions, seed)
+                                          : nlohmann::json::array();
   const auto m = measures_of(region);
   std::string title = fmt::format("{}:  V = {:.6g},  S = {:.6g},  mean free path = {:.6g}", region.name, m.volume,
                                   m.surface, geometry::mean_free_path(m));
@@ -164,7 +156,7 @@ void add_plot(CLI::App& app) {
     data["title"] = title_of(shape, args->trajectory, args->seed);
     data["loops"] = nlohmann::json::array();
     for (const auto* loop : shape.region.loops()) data["loops"].push_back(loop_points(*loop));
-    data["trajectory"] = args->trajectory > 0 ? free_trajectory(shape.region, args->trajectory, args->seed)
+    data["trajectory"] = args->trajectory > 0 ? free_trajectory<dynamics::FreeFlight>(shape.region, args->trajectory, args->seed)
                                               : nlohmann::json::array();
     draw(data, args->output);
     fmt::print("wrote {}\n", args->output);

@@ -442,8 +442,8 @@ bounce: a dict with times (K+1,), positions (K+1, d), velocities (K+1, d) just a
 walls (K+1,) (the start has -1) and escaped.)");
   m.def("trajectory", &shape_trajectory<dynamics::FreeFlight, Shape>, "shape"_a, py::kw_only(), "collisions"_a = 100,
         "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
-        "A free trajectory in a shape from a uniform random start (that of `billiard plot --trajectory` for "
-        "particle 0 in 2-D).");
+        "A free trajectory in a shape from a uniform random start (for particle 0, the one `billiard plot --trajectory` "
+        "draws).");
   m.def("trajectory", &shape_trajectory<dynamics3::FreeFlight3, Shape3>, "shape"_a, py::kw_only(),
         "collisions"_a = 100, "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
         "The same in a 3-D shape: positions and velocities are (K+1, 3).");

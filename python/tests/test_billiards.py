@@ -1,6 +1,7 @@
 """The Python module against the `billiard` program and against closed forms."""
 import json
 import math
+import os
 import subprocess
 import sys
 import threading
@@ -257,3 +258,21 @@ def test_example_script_writes_a_png(source, tmp_path):
                            "--times", "1,5", "--output", str(out)], capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+@pytest.mark.parametrize("shape_file", ["shapes/clover.yaml", "shapes/3d/sinai3.yaml", "shapes/3d/l-prism.yaml"])
+def test_plot_draws_the_modules_trajectory(source, tmp_path, shape_file):
+    """`billiard plot --trajectory K --seed S` draws the points of billiards.trajectory(shape,
+    seed=S): a stand-in drawing script (BILLIARDS_SCRIPTS) saves the data it is handed."""
+    for name in ("plot_shape.py", "plot_shape3.py"):
+        (tmp_path / name).write_text("import shutil, sys\nshutil.copy(sys.argv[1], sys.argv[1] + '.kept')\n"
+                                     "shutil.copy(sys.argv[1], sys.argv[2])\n")
+    env = dict(os.environ, BILLIARDS_SCRIPTS=str(tmp_path), TMPDIR=str(tmp_path))
+    done = subprocess.run([BINARY, "plot", str(source / shape_file), "-o", str(tmp_path / "out.png"),
+                           "--trajectory", "40", "--seed", "7"], capture_output=True, text=True, env=env)
+    assert done.returncode == 0, done.stderr
+    (kept,) = tmp_path.glob("billiard-plot-*.json.kept")
+    drawn = np.array(json.loads(kept.read_text())["trajectory"])
+    walk = billiards.trajectory(billiards.load_shape(source / shape_file), collisions=40, seed=7)
+    assert not walk["escaped"]
+    np.testing.assert_array_equal(drawn, walk["positions"])
