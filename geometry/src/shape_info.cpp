@@ -36,20 +36,27 @@ nlohmann::json pieces_json(const Region2& region) {
 
 }  // namespace
 
-nlohmann::json shape_info(const Shape& shape) {
-  const auto m = measures_of(shape.region);
-  const auto& T = m.boundary_tensor;
-  return {{"name", shape.region.name},
-          {"file", shape.region.origin.file},
+nlohmann::json common_info(const std::string& name, const std::string& file, const Measures& m,
+                           const std::map<std::string, double>& parameters) {
+  const auto vector = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  nlohmann::json tensor = nlohmann::json::array();
+  for (int i = 0; i < m.dimension; ++i) tensor.push_back(vector(m.boundary_tensor.row(i).transpose()));
+  return {{"name", name},
+          {"file", file},
           {"dimension", m.dimension},
           {"V", m.volume},
           {"S", m.surface},
           {"mean_free_path", mean_free_path(m)},
-          {"boundary_tensor", {{T(0, 0), T(0, 1)}, {T(1, 0), T(1, 1)}}},
-          {"bbox", {{m.bbox_lo(0), m.bbox_lo(1)}, {m.bbox_hi(0), m.bbox_hi(1)}}},
-          {"parameters", shape.parameters},
-          {"holes", shape.region.holes.size()},
-          {"pieces", pieces_json(shape.region)}};
+          {"boundary_tensor", tensor},
+          {"bbox", {vector(m.bbox_lo), vector(m.bbox_hi)}},
+          {"parameters", parameters}};
+}
+
+nlohmann::json shape_info(const Shape& shape) {
+  auto info = common_info(shape.region.name, shape.region.origin.file, measures_of(shape.region), shape.parameters);
+  info["holes"] = shape.region.holes.size();
+  info["pieces"] = pieces_json(shape.region);
+  return info;
 }
 
 }  // namespace billiards::geometry

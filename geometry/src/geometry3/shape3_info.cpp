@@ -2,6 +2,8 @@
 // module's `info` returns.
 #include "billiards/geometry3/shape3_info.hpp"
 
+#include "billiards/geometry/shape_info.hpp"
+
 #include <nlohmann/json.hpp>
 
 namespace billiards::geometry3 {
@@ -29,19 +31,11 @@ nlohmann::json boundary_json(const Boundary3& outer) {
 }  // namespace
 
 nlohmann::json shape_info(const Shape3& shape) {
-  const auto m = measures_of(shape.region);
-  const auto& T = m.boundary_tensor;
-  return {{"name", shape.region.name},
-          {"file", shape.region.origin.file},
-          {"dimension", 3},
-          {"V", m.volume},
-          {"S", m.surface},
-          {"mean_free_path", geometry::mean_free_path(m)},
-          {"boundary_tensor", {{T(0, 0), T(0, 1), T(0, 2)}, {T(1, 0), T(1, 1), T(1, 2)}, {T(2, 0), T(2, 1), T(2, 2)}}},
-          {"bbox", {vector_json(m.bbox_lo), vector_json(m.bbox_hi)}},
-          {"parameters", shape.parameters},
-          {"holes", shape.region.holes.size()},
-          {"boundary", boundary_json(shape.region.outer)}};
+  auto info = geometry::common_info(shape.region.name, shape.region.origin.file, measures_of(shape.region),
+                                    shape.parameters);
+  info["holes"] = shape.region.holes.size();
+  info["boundary"] = boundary_json(shape.region.outer);
+  return info;
 }
 
 }  // namespace billiards::geometry3
