@@ -10,6 +10,8 @@
 //
 //   bench_sinai3_kicks [--R 0.25] [--omega-pi 320] [--dt 10] [--n 20000] [--seed 1] [--F 10]
 //                      [--threads 2] [--lags 6] [--isotropy N] [--spectrum W1,W2,... (ω/π)]
+#include "kick_echo.hpp"
+
 #include "billiards/analysis.hpp"
 #include "billiards/dynamics3/table3.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
@@ -28,6 +30,7 @@
 
 using namespace billiards;
 using dynamics3::Vec3;
+using namespace billiards::bench;
 
 namespace {
 
@@ -54,6 +57,9 @@ enum Column {
   echo_driven,   // their prediction −4a²F_α²J₂(K)/(mω²) along the driven path
   echo_frozen,   // ... along the undriven path
   cross_other,   // the cross terms that are not echo triples
+  chain1,        // 2κ_jκ_k for hits on one axis's faces with no ball hit between, next on the axis
+  chain3,        // ... third on the axis (the second is the echo triple)
+  chain4,        // ... fourth or later
   columns_before_lags
 };
 
@@ -92,78 +98,6 @@ Options parse(int argc, char** argv) {
     }
   }
   return o;
-}
-
-struct Kick {
-  double t, a, Fn, kappa;
-  int wall;
-  Vec3 n, x, w;  // normal, hit point, oscillating-frame velocity before the hit
-};
-
-bool is_ball(const dynamics3::Table3& table, int wall) {
-  return wall >= int(table.planes().size() + table.triangles().size());
-}
-
-/// Echo triples: hits p, m, q on the faces normal to one axis α (so p and q on the same face,
-/// m on the opposite one) with no ball hit between p and q.  The flights p → m and m → q then
-/// take the same time L/|w_α| (the motion along α is a free bounce between the two faces), so
-/// the kick at m, which changes |w_α| by −2(F·n_m/mω) sin θ_m, shifts θ_q by K sin θ_m with
-/// K = 2|F_α| L/(m w_α²) and θ_p + θ_q = 2θ_m ± K sin θ_m + O(F/ω) whatever the ω: the
-/// standard map's echo (Rechester & White 1980).  Averaged over θ_m,
-/// E[κ_p κ_q] = −2 w_α² F_α² J₂(K)/(m ω²), with J₂ the Bessel function, which the theory's
-/// independent kicks leave out.  Calls f(p, m, q, prediction of 2E[κ_p κ_q]) for each triple.
-template <class Visit>
-void echoes(const dynamics3::Table3& table, const std::vector<Kick>& kicks, const Vec3& accel, double omega,
-            Visit f) {
-  std::array<int, 3> last{-1, -1, -1}, before{-1, -1, -1};
-  for (int k = 0; k < int(kicks.size()); ++k) {
-    if (is_ball(table, kicks[k].wall)) {
-      last = before = {-1, -1, -1};
-      continue;
-    }
-    int axis = 0;
-    kicks[k].n.cwiseAbs().maxCoeff(&axis);
-    if (before[axis] >= 0) {
-      const auto& m = kicks[last[axis]];
-      const double L = table.hi()[axis] - table.lo()[axis], F = accel[axis], s2 = m.a * m.a;
-      f(before[axis], last[axis], k, -4 * s2 * F * F * std::cyl_bessel_j(2.0, 2 * std::abs(F) * L / s2) / (omega * omega));
-    }
-    before[axis] = last[axis];
-    last[axis] = k;
-  }
-}
-
-/// The driven path of one particle: its kicks and its lab-frame ΔE.
-std::vector<Kick> driven_kicks(const dynamics3::Table3& table, const dynamics3::PeriodicDriveFlight3& flight,
-                               const dynamics3::State3& s0, double dt, double& dE) {
-  std::vector<Kick> kicks;
-  auto s = flight.start(s0);
-  const Vec3 amp_v = flight.accel / flight.omega;
-  while (true) {
-    const auto hit = table.collision(flight, s, dt);
-    if (!hit.found()) break;
-    const auto before = flight.advance(s, hit.t);
-    const Vec3 u = amp_v * before.sin_phase, w = before.v - u;
-    dynamics3::bounce(flight, s, hit);
-    const Vec3 w_after = s.v - u;
-    kicks.push_back({hit.t, w.dot(hit.normal), flight.accel.dot(hit.normal),
-                     0.5 * (w_after.squaredNorm() - w.squaredNorm()), hit.wall, hit.normal, hit.point, w});
-  }
-  dE = 0.5 * (flight.advance(s, dt).v.squaredNorm() - s0.v.squaredNorm());
-  return kicks;
-}
-
-/// The undriven path from the same start: hit times, normal speeds and normals.
-std::vector<Kick> free_kicks(const dynamics3::Table3& table, const Vec3& accel, dynamics3::State3 s, double dt) {
-  std::vector<Kick> kicks;
-  const double v2 = s.v.squaredNorm();
-  while (true) {
-    const auto hit = table.collision(s, dt);
-    if (!hit.found()) break;
-    kicks.push_back({hit.t, s.v.dot(hit.normal), accel.dot(hit.normal), 0, hit.wall, hit.normal, hit.point, s.v});
-    dynamics3::bounce(s, hit, v2);
-  }
-  return kicks;
 }
 
 void particle_row(const dynamics3::Table3& table, const dynamics3::PeriodicDriveFlight3& flight, const Options& o,
@@ -205,6 +139,21 @@ void particle_row(const dynamics3::Table3& table, const dynamics3::PeriodicDrive
     row[echo_measured] += 2 * kicks[p].kappa * kicks[q].kappa;
     row[echo_driven] += predicted;
   });
+  std::array<std::vector<int>, 3> chain;  // per axis, its face hits since the last ball hit
+  for (int k = 0; k < int(kicks.size()); ++k) {
+    if (is_ball(table, kicks[k].wall)) {
+      for (auto& c : chain) c.clear();
+      continue;
+    }
+    int axis = 0;
+    kicks[k].n.cwiseAbs().maxCoeff(&axis);
+    auto& c = chain[std::size_t(axis)];
+    for (int j = 0; j < int(c.size()); ++j) {
+      const int sublag = int(c.size()) - j;
+      if (sublag != 2) row[sublag == 1 ? chain1 : sublag == 3 ? chain3 : chain4] += 2 * kicks[c[j]].kappa * kicks[k].kappa;
+    }
+    c.push_back(k);
+  }
   row[dE] = dE_lab;
   row[dE2] = (dE_lab - g1dt) * (dE_lab - g1dt);
   row[cross] = sum * sum - row[sum_k2];
@@ -349,6 +298,9 @@ int main(int argc, char** argv) {
   rel("echo triples: -4a^2F^2 J2(K)/w^2, driven path", echo_driven, g2dt);
   rel("echo triples: -4a^2F^2 J2(K)/w^2, frozen path", echo_frozen, g2dt);
   rel("cross terms other than echo triples", cross_other, g2dt);
+  rel("  same axis, no ball between: next hit", chain1, g2dt);
+  rel("  same axis, no ball between: third hit", chain3, g2dt);
+  rel("  same axis, no ball between: fourth or later", chain4, g2dt);
   rel("frozen path: white part", frozen_white, g2dt);
   rel("frozen path: total (phase-averaged)", frozen_total, g2dt);
   fmt::print("  max |dE - sum kappa| = {:.2e}\n", [&] {
