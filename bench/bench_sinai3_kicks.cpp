@@ -1,15 +1,17 @@
-// Kick statistics of the driven 3-D Sinai billiard (README "3-D shapes", the open finding on
-// Var ΔE).  In the oscillating frame w = v − (F/mω) sin θ(t) the velocity is constant in
-// flight, so ε = ½m|w|² changes only at collisions, by the kick κ = 2m(a + b)b with a = w·n,
-// b = (F·n/mω) sin θ; with Δt a whole number of drive periods ΔE = Σκ exactly.  The theory's
-// g2 is E[Σκ²] = Σ 2a²(F·n)²/(mω²) with independent phases; this program measures, per
-// particle, Σκ², its theory along the same path, the cross terms Σ_{k≠l} κ_k κ_l by lag and by
-// the kind of wall pair, and the same sums for the frozen (undriven) path with the drive's
-// phase averaged in closed form: (2/mω²)|Σ a_k (F·n_k) e^{iωt_k}|².  Every value is an
-// ensemble mean with its standard error, relative to g2Δt.
+// Kick statistics of the driven 3-D Sinai billiard, m = 1 (README "3-D shapes": the excess of
+// Var ΔE, an echo between parallel walls).  In the oscillating frame w = v − (F/mω) sin θ(t)
+// the velocity is constant in flight, so ε = ½m|w|² changes only at collisions, by the kick
+// κ = 2m(a + b)b with a = w·n, b = (F·n/mω) sin θ; with Δt a whole number of drive periods
+// ΔE = Σκ exactly.  The theory's g2 is E[Σκ²] = Σ 2a²(F·n)²/(mω²) with independent phases; this
+// program measures, per particle, Σκ², its theory along the same path, the cross terms
+// Σ_{k≠l} κ_k κ_l by lag, by the kind of wall pair, in echo triples (against their J₂
+// prediction, kick_echo.hpp) and in longer chains on one axis, and the same sums for the frozen
+// (undriven) path with the drive's phase averaged in closed form: (2/mω²)|Σ a_k (F·n_k) e^{iωt_k}|².
+// Every value is an ensemble mean with its standard error, relative to g2Δt.
 //
 //   bench_sinai3_kicks [--R 0.25] [--omega-pi 320] [--dt 10] [--n 20000] [--seed 1] [--F 10]
-//                      [--threads 2] [--lags 6] [--isotropy N] [--spectrum W1,W2,... (ω/π)]
+//                      [--threads 2] [--lags 6] [--isotropy N] [--dump kicks.csv]
+//   bench_sinai3_kicks --spectrum W1,W2,... (ω/π) [--n N]: the frozen paths' cross terms only
 #include "kick_echo.hpp"
 
 #include "billiards/analysis.hpp"
@@ -23,7 +25,6 @@
 #include <complex>
 #include <cstdio>
 #include <cstdlib>
-#include <map>
 #include <string>
 #include <thread>
 #include <vector>
