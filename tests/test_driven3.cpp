@@ -5,6 +5,7 @@
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics3/table3.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
+#include "kick_echo.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -102,11 +103,9 @@ TEST_CASE("3-D: zero drive is the free billiard, collision for collision") {
   }
 }
 
-// With 8000 particles the standard errors are 23% (mean) and 1.6% (variance).  With 80 000
-// (measured 2026-11-23) the mean still agrees (−0.1 SE) but the variance is 2.7% above g2 dt
-// (+5 SE); the 2-D Sinai table (square and disk) shows a like excess (mean +4 SE at 10⁵
-// particles) that vanishes at 2560π, while the clover and the stadium agree at 320π: a
-// finite-frequency correction of Sinai tables, not a d = 3 effect (README, "3-D shapes").
+// With 8000 particles the standard errors are 23% (mean) and 1.6% (variance).  With 2·10⁵ the
+// variance is 2.7% (8 SE) above the Fokker–Planck one at any ω: the echo between parallel
+// faces (next test; README, "3-D shapes"), +3.1% at this F.
 TEST_CASE("3-D Sinai at omega = 320 pi: <dE> and Var(dE) match g1 dt and g2 dt (d = 3)") {
   const auto shape = sinai3();
   const dynamics3::Table3 table(shape.region);
@@ -145,6 +144,47 @@ TEST_CASE("3-D Sinai at omega = 320 pi: <dE> and Var(dE) match g1 dt and g2 dt (
   // And the exact Fokker–Planck moments with I_2 (d = 3).
   const auto fp = analysis::fokker_planck_exact_moments(c.C * dt, E0, 3);
   CHECK(std::abs(m.variance - fp.variance) < 3 * m.se_variance);
+}
+
+// The theory takes the kicks κ_k as uncorrelated.  Between the cube's parallel faces they are
+// not: hits p, m, q on one axis's faces with no ball hit between have equal flight times
+// before and after m, so θ_p + θ_q = 2θ_m ± K sin θ_m with K = 2|F_α|L/(m w_α²) at any ω, and
+// E[κ_p κ_q] = −2 w_α² F_α² J₂(K)/(mω²) (bench/kick_echo.hpp).  At F = 2 (K ≥ 2.3, J₂ up to
+// 0.49) this lowers Var ΔE by a fifth (measured −21.6 ± 0.3% of g2 dt with 2·10⁵ particles; the
+// echo triples −25.9%, longer chains on one axis the rest).  The measured sum of 2κ_p κ_q over the
+// triples must equal the J₂ prediction along the same paths: with phases drawn independently of
+// the kicks (collision times not shifted by them) it would be zero.
+TEST_CASE("3-D Sinai: kicks three hits apart between parallel faces correlate as J2(K) predicts") {
+  const auto shape = sinai3();
+  const dynamics3::Table3 table(shape.region);
+  const double F = 2, omega = 320 * pi, E0 = 0.5, dt = 10;
+  const PeriodicDriveFlight3 flight{Vec3(F, F, F) / std::sqrt(3.0), omega, 0};
+  const std::size_t n = 20000;
+  std::vector<double> dE(n), echo_gap(n), echo(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    dynamics::ParticleRng rng(1, i);
+    const auto kicks = bench::driven_kicks(table, flight, dynamics3::sample_microcanonical(table, 1.0, rng), dt, dE[i]);
+    bench::echoes(table, kicks, flight.accel, omega, [&](int p, int, int q, double predicted) {
+      const double measured = 2 * kicks[p].kappa * kicks[q].kappa;
+      echo[i] += measured;
+      echo_gap[i] += measured - predicted;
+    });
+  }
+  analysis::Drive drive;
+  drive.F = flight.accel;
+  drive.omega = omega;
+  drive.mass = 1;
+  const auto c = analysis::coefficients(geometry3::measures_of(shape.region), drive, E0);
+  const double g2dt = c.g2 * dt;
+  const auto gap = analysis::sample_moments(echo_gap), measured = analysis::sample_moments(echo);
+  INFO("echo triples: measured " << measured.mean / g2dt << " ± " << measured.se_mean / g2dt
+                                  << " of g2 dt, measured − J2 prediction " << gap.mean / g2dt << " ± " << gap.se_mean / g2dt);
+  CHECK(measured.mean < -0.2 * g2dt);  // the echo is there, and large
+  CHECK(std::abs(gap.mean) < 4 * gap.se_mean);
+  const auto m = analysis::sample_moments(dE);
+  const auto fp = analysis::fokker_planck_exact_moments(c.C * dt, E0, 3);
+  INFO("Var = " << m.variance / g2dt << " ± " << m.se_variance / g2dt << " of g2 dt, FP " << fp.variance / g2dt);
+  CHECK(m.variance < fp.variance - 10 * m.se_variance);
 }
 
 namespace {
