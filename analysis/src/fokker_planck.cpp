@@ -263,15 +263,18 @@ FokkerPlanckSolution solve_fokker_planck(const std::vector<double>& s, double E0
 }
 
 Moments moments_of(const EnergyGrid& grid, const std::vector<double>& eta) {
+  // Two passes: a narrow η far from E = 0 would lose its variance in ⟨E²⟩ − ⟨E⟩².
   double m0 = 0, m1 = 0, m2 = 0;
   for (std::size_t i = 0; i < eta.size(); ++i) {
-    const double p = eta[i] * grid.width(i), c = grid.center(i), w = grid.width(i);
-    m0 += p;
-    m1 += p * c;
-    m2 += p * (c * c + w * w / 12);
+    m0 += eta[i] * grid.width(i);
+    m1 += eta[i] * grid.width(i) * grid.center(i);
   }
   const double mean = m1 / m0;
-  return {m0, mean, m2 / m0 - mean * mean};
+  for (std::size_t i = 0; i < eta.size(); ++i) {
+    const double w = grid.width(i), d = grid.center(i) - mean;
+    m2 += eta[i] * w * (d * d + w * w / 12);
+  }
+  return {m0, mean, m2 / m0};
 }
 
 std::function<double(double)> cdf_of(const EnergyGrid& grid, const std::vector<double>& eta) {
