@@ -169,4 +169,14 @@ TEST_CASE("fp with a potential: numerical columns only, each eta integrating to 
   CHECK(cmp.status != 0);
   CHECK_THAT(cmp.output, Catch::Contains("compare needs a scene with a Fokker-Planck prediction"));
   CHECK_FALSE(fs::exists(dir / "none"));
+
+  // A bowl U = |x|² in the unit circle: at E0 = 1/2 < U on the wall no particle reaches the wall.
+  const auto bowl = dir / "bowl.yaml";
+  write_file(bowl, "shape: " BILLIARDS_SOURCE_DIR "/shapes/circle.yaml\ninitial:\n  microcanonical: {energy: 1/2}\n"
+                   "force:\n  periodic: {amplitude: [1, 0], omega: 100}\npotential: {expression: x^2 + y^2}\n"
+                   "run: {particles: 10, time: 1}\n");
+  const auto trapped = billiard("fp " + bowl.string() + " --times 1 -o " + (dir / "bowl.csv").string());
+  CHECK(trapped.status != 0);
+  CHECK_THAT(trapped.output, Catch::Contains("bowl.yaml") && Catch::Contains("the energy does not diffuse"));
+  CHECK_FALSE(fs::exists(dir / "bowl.csv"));
 }
