@@ -216,7 +216,7 @@ namespace {
 
 /// The paper's clover under F = 10 along (1, 1)/√2 at E0 = 1/2, with `extra` scene keys; loaded.
 dynamics::Scene clover_scene(const std::string& name, const std::string& omega, const std::string& extra) {
-  const auto dir = std::filesystem::temp_directory_path() / "billiards-test-fp-potential";
+  const auto dir = std::filesystem::temp_directory_path() / "billiards-test-analysis-fp-scenes";
   std::filesystem::create_directories(dir);
   const auto path = dir / (name + ".yaml");
   std::ofstream(path) << "shape: " BILLIARDS_SOURCE_DIR "/shapes/clover.yaml\nparameters: {F: 10, omega: " << omega
