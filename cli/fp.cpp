@@ -1,5 +1,6 @@
 // billiard fp SCENE --times 10,100,1000 -o fp.csv: the energy distribution predicted by the
-// Fokker–Planck equation, numerically (Chang–Cooper) and analytically (U = 0), side by side.
+// Fokker–Planck equation, numerically (Chang–Cooper) and analytically (U = 0) side by side; with
+// a potential, numerically only.
 #include "commands.hpp"
 #include "options.hpp"
 
@@ -30,38 +31,55 @@ void fp(FpArgs& args) {
   args.overrides.set = parse_overrides(args.set);
   const auto scene = dynamics::load_scene(args.scene, args.overrides);
   const auto c = analysis::prediction_of(scene);
-  if (!c || !c->closed_form)
-    throw InputError(args.scene, 0,
-                     "fp needs a periodic force (uniform or field), no potential, and a microcanonical initial energy");
+  if (!c)
+    throw InputError(args.scene, 0, "fp needs a periodic force (uniform or field) and a microcanonical initial energy");
   std::sort(args.times.begin(), args.times.end());
   args.times.erase(std::unique(args.times.begin(), args.times.end()), args.times.end());
   if (args.times.empty() || !(args.times.front() > 0)) throw InputError("--times", 0, "times must be positive");
   const int d = c->dimension;
   const double E0 = scene.energy;
-  std::vector<double> s;
-  for (double t : args.times) s.push_back(c->C * t);
-  const auto solution = analysis::solve_fokker_planck(s, E0, d, args.cells);
+  const auto solution = *analysis::fokker_planck_of(scene, args.times, args.cells);
   const auto& grid = solution.grid;
+  warn_if_coarse(solution);
+  // With a potential there is no analytic solution: numerical columns only.
   std::string csv = "E";
-  for (double t : args.times) csv += fmt::format(",eta_numerical(t={0}),eta_analytic(t={0})", t);
+  for (double t : args.times)
+    csv += c->closed_form ? fmt::format(",eta_numerical(t={0}),eta_analytic(t={0})", t)
+                          : fmt::format(",eta_numerical(t={})", t);
   csv += "\n";
   for (std::size_t i = 0; i < grid.cells(); ++i) {
     csv += fmt::format("{:.10g}", grid.center(i));
-    for (std::size_t k = 0; k < args.times.size(); ++k)
-      csv += fmt::format(",{:.10g},{:.10g}", solution.eta[k][i],
-                         analysis::fokker_planck_eta(grid.center(i), c->C * args.times[k], E0, d));
+    for (std::size_t k = 0; k < args.times.size(); ++k) {
+      csv += fmt::format(",{:.10g}", solution.eta[k][i]);
+      if (c->closed_form)
+        csv += fmt::format(",{:.10g}", analysis::fokker_planck_eta(grid.center(i), c->C * args.times[k], E0, d));
+    }
     csv += "\n";
   }
   const std::string tmp = args.output + ".tmp";
   std::ofstream(tmp) << csv;
   std::filesystem::rename(tmp, args.output);
-  fmt::print("wrote {}: eta(E, t) at t = {} (C = {:.6g})\n", args.output, fmt::join(args.times, ", "), c->C);
+  if (c->closed_form)
+    fmt::print("wrote {}: eta(E, t) at t = {} (C = {:.6g})\n", args.output, fmt::join(args.times, ", "), c->C);
+  else
+    fmt::print("wrote {}: eta(E, t) at t = {}, numerical only (U != 0: no analytic solution); {} cells on E = "
+               "{:.6g} .. {:.6g}, {} evaluations of g1, g2\n",
+               args.output, fmt::join(args.times, ", "), grid.cells(), grid.edges.front(), grid.edges.back(),
+               solution.evaluations);
 }
 
 }  // namespace
 
+void warn_if_coarse(const analysis::FokkerPlanckSolution& solution) {
+  if (solution.resolution < 5)
+    fmt::print(stderr,
+               "warning: the first time's spread covers {:.2g} cells of the Fokker-Planck grid (one grid serves "
+               "every time): its eta is smeared by the cells; use more --cells\n",
+               solution.resolution);
+}
+
 void add_fp(CLI::App& app) {
-  auto* cmd = app.add_subcommand("fp", "Fokker-Planck prediction of the energy distribution (numerical and analytic)");
+  auto* cmd = app.add_subcommand("fp", "Fokker-Planck prediction of the energy distribution (numerical, and analytic for U = 0)");
   auto args = std::make_shared<FpArgs>();
   cmd->add_option("scene", args->scene, "scene file (YAML)")->required();
   cmd->add_option("--times", args->times, "times t1,t2,... at which to write eta(E, t)")->delimiter(',')->required();

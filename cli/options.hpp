@@ -41,4 +41,8 @@ inline Overrides parse_overrides(const std::vector<std::string>& assignments) {
 
 void print_prediction(const analysis::Coefficients& c, double dt);
 
+/// A warning on stderr when the numerical Fokker–Planck grid resolves the first time's spread
+/// by fewer than 5 cells (fp.cpp).
+void warn_if_coarse(const analysis::FokkerPlanckSolution& solution);
+
 }  // namespace billiards::cli

@@ -7,7 +7,8 @@ Top row: the energy histogram at up to four recorded times (steps), the Fokker-P
 eta(E, t) averaged over each bin (dots) and as a curve (from fokker-planck.csv), with the
 Kolmogorov-Smirnov distance (p-value) and the L1 distance beside the L1 that sampling noise
 alone would give.  Bottom row: <dE> and Var(dE) against t with their standard errors, the
-short-time prediction g1 t, g2 t, and the exact Fokker-Planck moments.
+short-time prediction g1 t, g2 t, and the Fokker-Planck moments (exact, or with a potential
+those of the numerical solution, whose eta fokker-planck.csv then holds).
 """
 import json
 import os
@@ -48,6 +49,9 @@ def main(run):
             ax.set_ylabel("density")
             ax.legend(fontsize=7, loc="center right")
 
+    pred = comparison["prediction"]
+    # With a potential (closed_form false) the Fokker-Planck law is the numerical solution.
+    fp_label = "Fokker-Planck, exact" if pred["closed_form"] else "Fokker-Planck, numerical"
     t = np.array([0] + [f["t"] for f in times])
     for col, (key, se, short, exact, label) in enumerate(
             (("mean_dE", "se_mean_dE", "g1_t", "fp_mean_dE", "<dE>"),
@@ -55,13 +59,13 @@ def main(run):
         ax = fig.add_subplot(grid[1, col])
         ax.errorbar(t[1:], [f[key] for f in times], yerr=[f[se] for f in times], fmt="o", ms=3, label="simulation")
         ax.plot(t, [0] + [f[short] for f in times], "--", color="gray", label="short time: g t")
-        ax.plot(t, [0] + [f[exact] for f in times], "k-", lw=1, label="Fokker-Planck, exact")
+        ax.plot(t, [0] + [f[exact] for f in times], "k-", lw=1, label=fp_label)
         ax.set_xlabel("t")
         ax.set_ylabel(label)
         ax.legend(fontsize=8)
-    pred = comparison["prediction"]
-    fig.suptitle(f"{comparison['scene']}: simulation against Fokker-Planck (C = {pred['C']:.5g}, "
-                 f"N = {times[0]['n']})", fontsize=11)
+    drive = f"C = {pred['C']:.5g}" if pred["closed_form"] else "U != 0"
+    fig.suptitle(f"{comparison['scene']}: simulation against Fokker-Planck ({drive}, N = {times[0]['n']})",
+                 fontsize=11)
     fig.tight_layout()
     out = os.path.join(run, "comparison.png")
     fig.savefig(out + ".tmp.png", dpi=110)

@@ -3,6 +3,7 @@
 #include "billiards/analysis/potential.hpp"
 #include "billiards/analysis/wall.hpp"
 #include "billiards/dynamics/scene.hpp"
+#include "billiards/geometry/input_error.hpp"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -76,13 +77,9 @@ void check_validity(Coefficients& c, double F, double omega, double mass) {
                                      "free flight (the paper's condition 2)", c.length_ratio));
 }
 
-/// The largest |F(x)| over the wall, sampled at 257 points per piece.
+/// The largest |F(x)| over the wall (sampled).
 double largest_force_on_wall(const geometry::Region2& region, const ForceField& F) {
-  double F_max = 0;
-  for (const geometry::Loop* loop : region.loops())
-    for (const geometry::Piece& piece : loop->pieces)
-      for (int k = 0; k <= 256; ++k) F_max = std::max(F_max, F(geometry::point_along(piece, k / 256.0)).norm());
-  return F_max;
+  return wall_maximum(region, [&](const geometry::Vec2& x) { return F(x).norm(); });
 }
 
 }  // namespace
@@ -164,6 +161,26 @@ void to_json(nlohmann::json& j, const Coefficients& c) {
        {"warnings", c.warnings}};
 }
 
+namespace {
+
+/// The scene's drive amplitude F(x), uniform or its field's expressions (2-D); refers to the scene.
+ForceField amplitude_of(const dynamics::Scene& scene) {
+  if (scene.force.kind == dynamics::Force::Kind::field) {
+    const auto* field = &scene.force.field;
+    return [field](const geometry::Vec2& x) { return geometry::Vec2((*field)[0](x), (*field)[1](x)); };
+  }
+  const geometry::Vec2 F(scene.force.amplitude);
+  return [F](const geometry::Vec2&) { return F; };
+}
+
+/// The scene's U(x); refers to the scene.
+Potential potential_of(const dynamics::Scene& scene) {
+  const auto* p = &*scene.potential;
+  return [p](const geometry::Vec2& x) { return p->U(x); };
+}
+
+}  // namespace
+
 std::optional<Coefficients> prediction_of(const dynamics::Scene& scene) {
   using Kind = dynamics::Force::Kind;
   const Kind kind = scene.force.kind;
@@ -176,16 +193,35 @@ std::optional<Coefficients> prediction_of(const dynamics::Scene& scene) {
     return coefficients(scene.measures(), drive, scene.energy);
   }
   // A field amplitude or a potential: quadrature along the wall (2-D scenes only).
-  const auto& field = scene.force.field;
-  const geometry::Vec2 uniform = kind == Kind::periodic ? geometry::Vec2(scene.force.amplitude) : geometry::Vec2::Zero();
-  const ForceField F = [&](const geometry::Vec2& x) {
-    return kind == Kind::field ? geometry::Vec2(field[0](x), field[1](x)) : uniform;
-  };
   const auto& region = scene.shape.region;
+  const ForceField F = amplitude_of(scene);
   if (!scene.potential) return coefficients(region, F, scene.force.omega, scene.mass, scene.energy);
-  const auto& U = scene.potential->U;
-  return coefficients(region, [&](const geometry::Vec2& x) { return U(x); }, F, scene.force.omega, scene.mass,
-                      scene.energy);
+  return coefficients(region, potential_of(scene), F, scene.force.omega, scene.mass, scene.energy);
+}
+
+std::optional<FokkerPlanckSolution> fokker_planck_of(const dynamics::Scene& scene, const std::vector<double>& times,
+                                                     int cells, int steps) {
+  const auto c = prediction_of(scene);
+  if (!c) return std::nullopt;
+  if (!(c->g2 > 0))
+    throw InputError(scene.file, 0,
+                     fmt::format("g2 = 0 at E0 = {}: the energy does not diffuse (no drive on the wall a particle reaches)",
+                                 scene.energy));
+  if (c->closed_form) {
+    std::vector<double> s;
+    for (double t : times) s.push_back(c->C * t);
+    auto solution = solve_fokker_planck(s, scene.energy, c->dimension, cells, steps);
+    solution.times = times;
+    return solution;
+  }
+  const auto& region = scene.shape.region;
+  const Potential U = potential_of(scene);
+  const double lowest = -wall_maximum(region, [&](const geometry::Vec2& x) { return -U(x); });
+  const double highest = wall_maximum(region, U);
+  // The sampled minimum may lie a little above the true one: keep a margin below it.
+  const double floor = lowest - 1e-3 * (highest - lowest);
+  const auto g = energy_coefficients(region, U, amplitude_of(scene), scene.force.omega, scene.mass, 1e-10);
+  return solve_fokker_planck(times, scene.energy, floor, g, cells, steps);
 }
 
 }  // namespace billiards::analysis

@@ -218,10 +218,10 @@ Quadrature fluctuation_dissipation_g1(const geometry::Region2& region, const Pot
 
 EnergyCoefficients energy_coefficients(const geometry::Region2& region, const Potential& U, const ForceField& F,
                                        double omega, double mass, double tolerance) {
-  auto at = [&region, U, F, omega, mass, tolerance](double E) {
-    return potential_coefficients(region, U, F, E, omega, mass, tolerance);
+  return [&region, U, F, omega, mass, tolerance](double E) {
+    const PotentialCoefficients c = potential_coefficients(region, U, F, E, omega, mass, tolerance);
+    return DriftDiffusion{c.g1.value, c.g2.value};
   };
-  return {[at](double E) { return at(E).g1.value; }, [at](double E) { return at(E).g2.value; }};
 }
 
 }  // namespace billiards::analysis

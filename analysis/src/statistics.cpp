@@ -78,16 +78,29 @@ double binomial_mean_absolute_deviation(std::size_t n, double p) {
   return std::exp(log_mad);
 }
 
-HistogramL1 histogram_l1(const Histogram& h, const std::function<double(double)>& density) {
+namespace {
+
+/// The L1 distance and its noise level, with p_i = probability(a_i, b_i) for bin i = [a_i, b_i).
+HistogramL1 histogram_l1_of(const Histogram& h, const std::function<double(double, double)>& probability) {
   HistogramL1 out;
   const double total = double(h.total);
   for (std::size_t i = 0; i < h.counts.size(); ++i) {
-    // Rounding in the quadrature must not push a probability outside [0, 1].
-    const double p = std::clamp(integrate_adaptive(density, h.edge(i), h.edge(i + 1)).value, 0.0, 1.0);
+    // Rounding (in a quadrature, or a difference of CDFs) must not push p outside [0, 1].
+    const double p = std::clamp(probability(h.edge(i), h.edge(i + 1)), 0.0, 1.0);
     out.distance += std::abs(double(h.counts[i]) / total - p);
     out.expected_from_noise += binomial_mean_absolute_deviation(h.total, p) / total;
   }
   return out;
+}
+
+}  // namespace
+
+HistogramL1 histogram_l1(const Histogram& h, const std::function<double(double)>& density) {
+  return histogram_l1_of(h, [&](double a, double b) { return integrate_adaptive(density, a, b).value; });
+}
+
+HistogramL1 histogram_l1_cdf(const Histogram& h, const std::function<double(double)>& cdf) {
+  return histogram_l1_of(h, [&](double a, double b) { return cdf(b) - cdf(a); });
 }
 
 }  // namespace billiards::analysis

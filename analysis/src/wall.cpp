@@ -2,6 +2,7 @@
 
 #include "billiards/geometry/measures.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -88,6 +89,14 @@ Quadrature accessible_wall_quadrature(const geometry::Region2& region, const Wal
 Quadrature wall_quadrature(const geometry::Region2& region, const WallIntegrand& f, double tolerance) {
   return sum_over_pieces(region,
                          [&](const geometry::Piece& piece) { return piece_quadrature(piece, f, 0, 1, tolerance); });
+}
+
+double wall_maximum(const geometry::Region2& region, const ScalarField& f) {
+  double largest = -INFINITY;
+  for (const geometry::Loop* loop : region.loops())
+    for (const geometry::Piece& piece : loop->pieces)
+      for (int k = 0; k <= 256; ++k) largest = std::max(largest, f(geometry::point_along(piece, k / 256.0)));
+  return largest;
 }
 
 Quadrature wall_integral(const geometry::Region2& region, const ForceField& F, double tolerance) {

@@ -81,7 +81,7 @@ def test_fokker_planck_numerical_against_analytic_and_cli(source, tmp_path):
         assert np.sum(np.abs(eta[k] - exact) * dE) < 2e-3   # L1 distance
         m = billiards.fokker_planck_moments(sk, 0.5)
         assert np.sum(E * exact * dE) == pytest.approx(m["mean"], rel=1e-3)
-    # The scheme conserves the mass it starts from (the exact eta at s_1/10 on the cells).
+    # The scheme conserves the mass it starts from (the short-time law, normalized on the cells).
     mass = eta @ dE
     assert np.ptp(mass) < 1e-12 and mass[0] == pytest.approx(1, abs=1e-4)
     # `billiard fp` gives the same columns (C t = s for the scene's C).

@@ -2,6 +2,7 @@
 // periodic drive F cos(ωt), in any dimension d, from the table's exact measures alone.
 #pragma once
 
+#include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/geometry/measures.hpp"
 
 #include <Eigen/Core>
@@ -80,5 +81,14 @@ Coefficients coefficients(const geometry::Region2& region, const std::function<g
 /// The prediction for a scene: its coefficients at its initial energy, if the theory covers it
 /// (a periodic or field drive, with or without a potential, and a microcanonical start).
 std::optional<Coefficients> prediction_of(const dynamics::Scene& scene);
+
+/// The Fokker–Planck distribution η(E, t_k) of a scene at times t_k, numerically
+/// (solve_fokker_planck): with the closed forms in s = C t when prediction_of's `closed_form`,
+/// otherwise (a potential) with energy_coefficients' quadratures over {U < E} (each ~ms, so
+/// `cells` + ~50 of them) and the floor at the lowest U on the wall (sampled at 257 points a
+/// piece, less 1e-3 of U's range on the wall), under which no particle reaches the wall.  nullopt where prediction_of has no prediction; an
+/// InputError naming the scene if no particle reaches the wall at E0 (g2(E0) = 0).
+std::optional<FokkerPlanckSolution> fokker_planck_of(const dynamics::Scene& scene, const std::vector<double>& times,
+                                                     int cells, int steps = 2000);
 
 }  // namespace billiards::analysis

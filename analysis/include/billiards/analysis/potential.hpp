@@ -13,6 +13,7 @@
 #pragma once
 
 #include "billiards/analysis/coefficients.hpp"
+#include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/analysis/quadrature.hpp"
 #include "billiards/analysis/wall.hpp"
 #include "billiards/geometry/pieces.hpp"
@@ -61,11 +62,9 @@ PotentialCoefficients potential_coefficients(const geometry::Region2& region, co
 Quadrature fluctuation_dissipation_g1(const geometry::Region2& region, const Potential& U, const ForceField& F,
                                       double E, double omega, double mass, double tolerance = 1e-12);
 
-/// g1(E), g2(E) as functions of the energy, for evolve_fokker_planck (fokker_planck.hpp): each
-/// call is a potential_coefficients evaluation.  The region must outlive the result.
-struct EnergyCoefficients {
-  std::function<double(double)> g1, g2;
-};
+/// g1(E), g2(E) as a function of the energy, for the Fokker–Planck solvers (fokker_planck.hpp):
+/// each call is one potential_coefficients evaluation (a quadrature over {U < E}, ~ms), so
+/// tabulate it.  The region must outlive the result.
 EnergyCoefficients energy_coefficients(const geometry::Region2& region, const Potential& U, const ForceField& F,
                                        double omega, double mass, double tolerance = 1e-12);
 

@@ -54,6 +54,9 @@ struct HistogramL1 {
 };
 
 HistogramL1 histogram_l1(const Histogram& h, const std::function<double(double)>& density);
+/// The same with p_i = cdf(b_i) − cdf(a_i): for a CDF known exactly, or a numerical η's
+/// piecewise-linear one (fokker_planck.hpp's cdf_of), whose density jumps at every cell edge.
+HistogramL1 histogram_l1_cdf(const Histogram& h, const std::function<double(double)>& cdf);
 
 /// E|X − n p| for X ~ Binomial(n, p): 2 k C(n, k) pᵏ (1 − p)^{n−k+1} with k = ⌊n p⌋ + 1
 /// (De Moivre; Diaconis & Zabell 1991), evaluated in logarithms.  ≈ √(2 n p (1 − p)/π) for large n p.

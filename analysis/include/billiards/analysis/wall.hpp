@@ -20,6 +20,9 @@ using WallIntegrand = std::function<double(const geometry::Vec2& x, const geomet
 /// at joints, so the integrand is smooth on a piece.  Errors are summed over the pieces.
 Quadrature wall_quadrature(const geometry::Region2& region, const WallIntegrand& f, double tolerance = 1e-10);
 
+/// The largest f(x) on the wall, sampled at 257 points per piece (its ends included).
+double wall_maximum(const geometry::Region2& region, const ScalarField& f);
+
 /// ∮ (F(x)·n̂)² dS.  For a uniform F this is Fᵀ T F with T = ∮ n̂ n̂ᵀ dS (geometry::wall_integral).
 Quadrature wall_integral(const geometry::Region2& region, const ForceField& F, double tolerance = 1e-10);
 
