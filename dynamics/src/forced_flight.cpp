@@ -41,9 +41,6 @@ bool may_meet_span(const BasicArcWall<Real>& w, const Vec2T<Real>& p, const Vec2
   return !(min(cross(w.to, a), cross(w.to, b)) > margin && min(cross(a, w.from), cross(b, w.from)) > margin);
 }
 
-template <class Real>
-using Quiver = scan::Quiver<BasicPeriodicDriveFlight<Real>, BasicDrivenState<Real>>;
-
 }  // namespace
 
 // ---- Periodic drive ---------------------------------------------------------------------
@@ -94,15 +91,14 @@ Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, c
 
 }  // namespace
 
-template <class Real>
-Real BasicPeriodicDriveFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w,
-                                               const Real& t_end) const {
-  return driven_exit_time(Quiver<Real>(*this, s), w, s.t, t_end);
+template <class Flight>
+auto DrivenScan<Flight>::exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const -> Real {
+  return driven_exit_time(quiver, w, quiver.s.t, t_end);
 }
 
-template <class Real>
-Real BasicPeriodicDriveFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
-  return driven_exit_time(Quiver<Real>(*this, s), w, s.t, t_end);
+template <class Flight>
+auto DrivenScan<Flight>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) const -> Real {
+  return driven_exit_time(quiver, w, quiver.s.t, t_end);
 }
 
 // ---- Quivering walls ---------------------------------------------------------------------
@@ -116,27 +112,6 @@ auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t) cons
   r.x = s.x + s.v * tau - accel / (omega * omega) * Real(r.cos_phase - s.cos_phase);
   r.t = t;
   return r;
-}
-
-namespace {
-/// The quivering-wall state as the certified scan sees it: guiding velocity ẏ, velocity
-/// relative to the walls ẏ − ḋ.
-template <class Real>
-scan::Quiver<BasicQuiveringWallFlight<Real>, BasicDrivenState<Real>> quiver_of(
-    const BasicQuiveringWallFlight<Real>& f, const BasicDrivenState<Real>& s) {
-  return {f, s, s.v, s.v - f.wall_velocity(s)};
-}
-}  // namespace
-
-template <class Real>
-Real BasicQuiveringWallFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w,
-                                               const Real& t_end) const {
-  return driven_exit_time(quiver_of(*this, s), w, s.t, t_end);
-}
-
-template <class Real>
-Real BasicQuiveringWallFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
-  return driven_exit_time(quiver_of(*this, s), w, s.t, t_end);
 }
 
 // ---- Static force ----------------------------------------------------------------------
@@ -204,6 +179,11 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicArcWal
   return tau == never ? Real(never) : Real(s.t + tau);
 }
 
+template struct DrivenScan<BasicPeriodicDriveFlight<double>>;
+template struct DrivenScan<BasicPeriodicDriveFlight<long double>>;
+template struct DrivenScan<BasicPeriodicDriveFlight<Reference>>;
+template struct DrivenScan<BasicQuiveringWallFlight<double>>;
+template struct DrivenScan<BasicQuiveringWallFlight<long double>>;
 template struct BasicPeriodicDriveFlight<double>;
 template struct BasicPeriodicDriveFlight<long double>;
 template struct BasicPeriodicDriveFlight<Reference>;

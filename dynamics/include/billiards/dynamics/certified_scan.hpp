@@ -148,6 +148,8 @@ struct Quiver {
   const State& s;
   V u, g0;
   V v0;              // velocity relative to the walls at τ = 0
+  V amp_x, amp_v;    // F/(mω²) and F/(mω): the oscillation's amplitudes
+  Real accel_norm;   // |F|/m
   Real speed_bound;  // bound on |v| at any time of this flight
   Real delta;        // |F|/(mω²) ≥ |oscillation|
 
@@ -157,10 +159,12 @@ struct Quiver {
   /// velocity relative to the walls at the start; s.x is the position relative to the walls.
   Quiver(const Flight& f, const State& st, const V& guiding_velocity, const V& relative_velocity)
       : flight(f), s(st), u(guiding_velocity), v0(relative_velocity) {
-    const V amp_x = f.accel / (f.omega * f.omega);
+    amp_x = f.accel / (f.omega * f.omega);
+    amp_v = f.accel / f.omega;
+    accel_norm = f.accel.norm();
     g0 = st.x + amp_x * st.cos_phase;
-    speed_bound = u.norm() + f.accel.norm() / f.omega;
-    delta = f.accel.norm() / (f.omega * f.omega);
+    speed_bound = u.norm() + accel_norm / f.omega;
+    delta = accel_norm / (f.omega * f.omega);
   }
   V guide(const Real& tau) const { return g0 + u * tau; }
   /// Position and velocity τ after the start (the closed form of advance()).  Within one
@@ -170,8 +174,8 @@ struct Quiver {
     using std::cos;
     using std::sin;
     if (tau == 0) return {s.x, v0};
-    const Real omega = flight.omega, th = Real(s.phase) + omega * tau;
-    return {g0 + u * tau - flight.accel / (omega * omega) * Real(cos(th)), u + flight.accel / omega * Real(sin(th))};
+    const Real th = Real(s.phase) + flight.omega * tau;
+    return {g0 + u * tau - amp_x * Real(cos(th)), u + amp_v * Real(sin(th))};
   }
 };
 
@@ -217,7 +221,7 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
                                 const Real& tau_end, Passes passes, InSpan in_span) {
   using std::max;
   const Real sign = focusing ? 1 : -1;
-  const Real Vb = q.speed_bound, A = q.flight.accel.norm(), delta = q.delta;
+  const Real Vb = q.speed_bound, A = q.accel_norm, delta = q.delta;
   const Real scale = (q.s.x - c).norm() + r;
   auto tolerance = [&](const Real& tau) { return Real(slack + 8 * eps<Real> * (scale + Vb * tau + delta)); };
   auto sample = [&](const Real& tau) {
