@@ -69,9 +69,25 @@ auto BasicPeriodicDriveFlight<Real>::advance(const State& s, const Real& t) cons
 
 namespace {
 
+/// Can the flight described by the Quiver q come near the wall before τ_end at all?  The wall
+/// lies in its bounding disk, the particle within δ of the guiding line, and a collision is
+/// declared within the scan's rounding band (the slack and a few ulps) of the wall: when the
+/// guiding line stays farther than twice all that from the disk until τ_end, the wall has no
+/// collision, and none of its windows need be computed.  (The band grows with τ: with no
+/// horizon, every wall is scanned.)
+template <class Real, class Q, class Wall>
+bool may_come_near(const Q& q, const Wall& w, const Real& tau_end) {
+  if (tau_end == never) return true;
+  const Vec2T<Real> g = q.g0 - w.bound_center;
+  const Real rounding = 16 * eps<Real> * (g.norm() + w.bound_radius + q.speed_bound * tau_end + q.delta);
+  const Real reach = w.bound_radius + 2 * (q.delta + w.slack + rounding);
+  return scan::reach_radius(Real(0), g, q.u, reach, false) <= tau_end;
+}
+
 /// Exit time through one wall of a flight described by the Quiver q (lab or quivering walls).
 template <class Real, class Q>
 Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t0, const Real& t_end) {
+  if (!may_come_near(q, w, Real(t_end - t0))) return Real(never);
   // A crossing counts only if the particle, within δ of the guiding point, can be in the
   // segment's span.
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
@@ -82,6 +98,7 @@ Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t
 
 template <class Real, class Q>
 Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, const Real& t_end) {
+  if (!may_come_near(q, w, Real(t_end - t0))) return Real(never);
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
   const Real tau = scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - t0),
