@@ -97,14 +97,21 @@ template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolF
 /// wall — `window_start(τ)`, τ itself when it is that close — nor in a window, up to the time
 /// `window_end(start)` at which the guide is twice that far, that `passes(start, end)`
 /// declares out of the wall's span.  Such windows are passed one after another without
-/// evaluating f.  Returns τ, a later time, or +∞ (nothing before tau_end).
+/// evaluating f.  Returns τ, a later time, or +∞ (nothing before tau_end).  `sampled_until`
+/// keeps the end of the last window that could not be passed: while the scan samples its way
+/// through that window, it is not decided again (sampling is always safe).
 template <class Real, class StartFn, class EndFn, class Passes>
-Real first_window(Real tau, const Real& tau_end, StartFn window_start, EndFn window_end, Passes passes) {
+Real first_window(Real tau, const Real& tau_end, StartFn window_start, EndFn window_end, Passes passes,
+                  Real& sampled_until) {
   for (;;) {
     const Real start = window_start(tau);
     if (start == never || start > tau_end) return never;
+    if (start < sampled_until) return start;
     const Real end = window_end(start);
-    if (!(end > start) || !passes(start, end)) return start;
+    if (!(end > start) || !passes(start, end)) {
+      sampled_until = end;
+      return start;
+    }
     if (end >= tau_end) return never;
     tau = end;
   }
@@ -209,7 +216,10 @@ Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& s
     const Real margin = B + tolerance(start), guide = g_off + nu * start;
     return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
   };
-  auto earliest = [&](const Real& tau) { return first_window(tau, tau_end, window_start, window_end, passes); };
+  Real sampled_until = -1;
+  auto earliest = [&](const Real& tau) {
+    return first_window(tau, tau_end, window_start, window_end, passes, sampled_until);
+  };
   return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
 }
 
@@ -246,7 +256,10 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
     return min({reach_radius(start, g, q.u, Real(r + 2 * margin), true),
                 reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
   };
-  auto earliest = [&](const Real& tau) { return first_window(tau, tau_end, window_start, window_end, passes); };
+  Real sampled_until = -1;
+  auto earliest = [&](const Real& tau) {
+    return first_window(tau, tau_end, window_start, window_end, passes, sampled_until);
+  };
   return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
 }
 
