@@ -68,7 +68,8 @@ bool may_be_near(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p, double t
 template <class Real>
 bool may_be_near(const BasicArcWall<Real>& w, const Vec2T<Real>& p, double tol) {
   using std::max;
-  const Real d2 = (p - w.center).squaredNorm(), outer = w.radius + 2 * tol, inner = max(Real(0), Real(w.radius - 2 * tol));
+  const Real d2 = (p - w.center).squaredNorm();
+  const Real outer = w.radius + 2 * tol, inner = max(Real(0), Real(w.radius - 2 * tol));
   return d2 <= outer * outer && d2 >= inner * inner;
 }
 
@@ -110,7 +111,9 @@ auto BasicTable<Real>::normal_at(int wall, const V& p) const -> V {
 template <class Real>
 bool BasicTable<Real>::contains(const V& p, double tolerance) const {
   // (At tolerance 0 the bound leaves no room for rounding: the distance decides alone.)
-  auto near = [&](const auto& w) { return (tolerance == 0 || may_be_near(w, p, tolerance)) && distance(w, p) <= tolerance; };
+  auto near = [&](const auto& w) {
+    return (tolerance == 0 || may_be_near(w, p, tolerance)) && distance(w, p) <= tolerance;
+  };
   int winding = 0;
   for (const auto& w : segments_) {
     if (near(w)) return true;
