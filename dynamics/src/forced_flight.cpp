@@ -41,9 +41,6 @@ bool may_meet_span(const BasicArcWall<Real>& w, const Vec2T<Real>& p, const Vec2
   return !(min(cross(w.to, a), cross(w.to, b)) > margin && min(cross(a, w.from), cross(b, w.from)) > margin);
 }
 
-template <class Real>
-using Quiver = scan::Quiver<BasicPeriodicDriveFlight<Real>, BasicDrivenState<Real>>;
-
 }  // namespace
 
 // ---- Periodic drive ---------------------------------------------------------------------
@@ -72,9 +69,25 @@ auto BasicPeriodicDriveFlight<Real>::advance(const State& s, const Real& t) cons
 
 namespace {
 
+/// Can the flight described by the Quiver q come near the wall before τ_end at all?  The wall
+/// lies in its bounding disk, the particle within δ of the guiding line, and a collision is
+/// declared within the scan's rounding band (the slack and a few ulps) of the wall: when the
+/// guiding line stays farther than twice all that from the disk until τ_end, the wall has no
+/// collision, and none of its windows need be computed.  (The band grows with τ: with no
+/// horizon, every wall is scanned.)
+template <class Real, class Q, class Wall>
+bool may_come_near(const Q& q, const Wall& w, const Real& tau_end) {
+  if (tau_end == never) return true;
+  const Vec2T<Real> g = q.g0 - w.bound_center;
+  const Real rounding = 16 * eps<Real> * (g.norm() + w.bound_radius + q.speed_bound * tau_end + q.delta);
+  const Real reach = w.bound_radius + 2 * (q.delta + w.slack + rounding);
+  return scan::reach_radius(Real(0), g, q.u, reach, false) <= tau_end;
+}
+
 /// Exit time through one wall of a flight described by the Quiver q (lab or quivering walls).
 template <class Real, class Q>
 Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t0, const Real& t_end) {
+  if (!may_come_near(q, w, Real(t_end - t0))) return Real(never);
   // A crossing counts only if the particle, within δ of the guiding point, can be in the
   // segment's span.
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
@@ -85,6 +98,7 @@ Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t
 
 template <class Real, class Q>
 Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, const Real& t_end) {
+  if (!may_come_near(q, w, Real(t_end - t0))) return Real(never);
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
   const Real tau = scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - t0),
@@ -94,15 +108,14 @@ Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, c
 
 }  // namespace
 
-template <class Real>
-Real BasicPeriodicDriveFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w,
-                                               const Real& t_end) const {
-  return driven_exit_time(Quiver<Real>(*this, s), w, s.t, t_end);
+template <class Flight>
+auto DrivenScan<Flight>::exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const -> Real {
+  return driven_exit_time(quiver, w, quiver.s.t, t_end);
 }
 
-template <class Real>
-Real BasicPeriodicDriveFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
-  return driven_exit_time(Quiver<Real>(*this, s), w, s.t, t_end);
+template <class Flight>
+auto DrivenScan<Flight>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) const -> Real {
+  return driven_exit_time(quiver, w, quiver.s.t, t_end);
 }
 
 // ---- Quivering walls ---------------------------------------------------------------------
@@ -116,27 +129,6 @@ auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t) cons
   r.x = s.x + s.v * tau - accel / (omega * omega) * Real(r.cos_phase - s.cos_phase);
   r.t = t;
   return r;
-}
-
-namespace {
-/// The quivering-wall state as the certified scan sees it: guiding velocity ẏ, velocity
-/// relative to the walls ẏ − ḋ.
-template <class Real>
-scan::Quiver<BasicQuiveringWallFlight<Real>, BasicDrivenState<Real>> quiver_of(
-    const BasicQuiveringWallFlight<Real>& f, const BasicDrivenState<Real>& s) {
-  return {f, s, s.v, s.v - f.wall_velocity(s)};
-}
-}  // namespace
-
-template <class Real>
-Real BasicQuiveringWallFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w,
-                                               const Real& t_end) const {
-  return driven_exit_time(quiver_of(*this, s), w, s.t, t_end);
-}
-
-template <class Real>
-Real BasicQuiveringWallFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
-  return driven_exit_time(quiver_of(*this, s), w, s.t, t_end);
 }
 
 // ---- Static force ----------------------------------------------------------------------
@@ -204,6 +196,11 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicArcWal
   return tau == never ? Real(never) : Real(s.t + tau);
 }
 
+template struct DrivenScan<BasicPeriodicDriveFlight<double>>;
+template struct DrivenScan<BasicPeriodicDriveFlight<long double>>;
+template struct DrivenScan<BasicPeriodicDriveFlight<Reference>>;
+template struct DrivenScan<BasicQuiveringWallFlight<double>>;
+template struct DrivenScan<BasicQuiveringWallFlight<long double>>;
 template struct BasicPeriodicDriveFlight<double>;
 template struct BasicPeriodicDriveFlight<long double>;
 template struct BasicPeriodicDriveFlight<Reference>;

@@ -57,6 +57,22 @@ Real distance(const BasicArcWall<Real>& w, const Vec2T<Real>& p) {
   return std::min(Real((p - (w.center + w.from)).norm()), Real((p - (w.center + w.to)).norm()));
 }
 
+/// Can p be within `tol` of the wall?  The distance to the supporting line or circle bounds
+/// the distance to the wall from below and needs no square root or division; false only when
+/// it exceeds 2 tol, far beyond the rounding of either distance.
+template <class Real>
+bool may_be_near(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p, double tol) {
+  using std::abs;
+  return abs(w.normal.dot(p - w.a)) <= 2 * tol;
+}
+template <class Real>
+bool may_be_near(const BasicArcWall<Real>& w, const Vec2T<Real>& p, double tol) {
+  using std::max;
+  const Real d2 = (p - w.center).squaredNorm();
+  const Real outer = w.radius + 2 * tol, inner = max(Real(0), Real(w.radius - 2 * tol));
+  return d2 <= outer * outer && d2 >= inner * inner;
+}
+
 }  // namespace
 
 template <class Real>
@@ -94,13 +110,17 @@ auto BasicTable<Real>::normal_at(int wall, const V& p) const -> V {
 
 template <class Real>
 bool BasicTable<Real>::contains(const V& p, double tolerance) const {
+  // (At tolerance 0 the bound leaves no room for rounding: the distance decides alone.)
+  auto near = [&](const auto& w) {
+    return (tolerance == 0 || may_be_near(w, p, tolerance)) && distance(w, p) <= tolerance;
+  };
   int winding = 0;
   for (const auto& w : segments_) {
-    if (distance(w, p) <= tolerance) return true;
+    if (near(w)) return true;
     winding += crossings(w, p);
   }
   for (const auto& w : arcs_) {
-    if (distance(w, p) <= tolerance) return true;
+    if (near(w)) return true;
     winding += crossings(w, p);
   }
   return winding != 0;

@@ -97,14 +97,21 @@ template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolF
 /// wall — `window_start(τ)`, τ itself when it is that close — nor in a window, up to the time
 /// `window_end(start)` at which the guide is twice that far, that `passes(start, end)`
 /// declares out of the wall's span.  Such windows are passed one after another without
-/// evaluating f.  Returns τ, a later time, or +∞ (nothing before tau_end).
+/// evaluating f.  Returns τ, a later time, or +∞ (nothing before tau_end).  `sampled_until`
+/// keeps the end of the last window that could not be passed: while the scan samples its way
+/// through that window, it is not decided again (sampling is always safe).
 template <class Real, class StartFn, class EndFn, class Passes>
-Real first_window(Real tau, const Real& tau_end, StartFn window_start, EndFn window_end, Passes passes) {
+Real first_window(Real tau, const Real& tau_end, StartFn window_start, EndFn window_end, Passes passes,
+                  Real& sampled_until) {
   for (;;) {
     const Real start = window_start(tau);
     if (start == never || start > tau_end) return never;
+    if (start < sampled_until) return start;
     const Real end = window_end(start);
-    if (!(end > start) || !passes(start, end)) return start;
+    if (!(end > start) || !passes(start, end)) {
+      sampled_until = end;
+      return start;
+    }
     if (end >= tau_end) return never;
     tau = end;
   }
@@ -148,6 +155,8 @@ struct Quiver {
   const State& s;
   V u, g0;
   V v0;              // velocity relative to the walls at τ = 0
+  V amp_x, amp_v;    // F/(mω²) and F/(mω): the oscillation's amplitudes
+  Real accel_norm;   // |F|/m
   Real speed_bound;  // bound on |v| at any time of this flight
   Real delta;        // |F|/(mω²) ≥ |oscillation|
 
@@ -157,10 +166,12 @@ struct Quiver {
   /// velocity relative to the walls at the start; s.x is the position relative to the walls.
   Quiver(const Flight& f, const State& st, const V& guiding_velocity, const V& relative_velocity)
       : flight(f), s(st), u(guiding_velocity), v0(relative_velocity) {
-    const V amp_x = f.accel / (f.omega * f.omega);
+    amp_x = f.accel / (f.omega * f.omega);
+    amp_v = f.accel / f.omega;
+    accel_norm = f.accel.norm();
     g0 = st.x + amp_x * st.cos_phase;
-    speed_bound = u.norm() + f.accel.norm() / f.omega;
-    delta = f.accel.norm() / (f.omega * f.omega);
+    speed_bound = u.norm() + accel_norm / f.omega;
+    delta = accel_norm / (f.omega * f.omega);
   }
   V guide(const Real& tau) const { return g0 + u * tau; }
   /// Position and velocity τ after the start (the closed form of advance()).  Within one
@@ -170,8 +181,8 @@ struct Quiver {
     using std::cos;
     using std::sin;
     if (tau == 0) return {s.x, v0};
-    const Real omega = flight.omega, th = Real(s.phase) + omega * tau;
-    return {g0 + u * tau - flight.accel / (omega * omega) * Real(cos(th)), u + flight.accel / omega * Real(sin(th))};
+    const Real th = Real(s.phase) + flight.omega * tau;
+    return {g0 + u * tau - amp_x * Real(cos(th)), u + amp_v * Real(sin(th))};
   }
 };
 
@@ -205,7 +216,10 @@ Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& s
     const Real margin = B + tolerance(start), guide = g_off + nu * start;
     return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
   };
-  auto earliest = [&](const Real& tau) { return first_window(tau, tau_end, window_start, window_end, passes); };
+  Real sampled_until = -1;
+  auto earliest = [&](const Real& tau) {
+    return first_window(tau, tau_end, window_start, window_end, passes, sampled_until);
+  };
   return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
 }
 
@@ -217,7 +231,7 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
                                 const Real& tau_end, Passes passes, InSpan in_span) {
   using std::max;
   const Real sign = focusing ? 1 : -1;
-  const Real Vb = q.speed_bound, A = q.flight.accel.norm(), delta = q.delta;
+  const Real Vb = q.speed_bound, A = q.accel_norm, delta = q.delta;
   const Real scale = (q.s.x - c).norm() + r;
   auto tolerance = [&](const Real& tau) { return Real(slack + 8 * eps<Real> * (scale + Vb * tau + delta)); };
   auto sample = [&](const Real& tau) {
@@ -242,7 +256,10 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
     return min({reach_radius(start, g, q.u, Real(r + 2 * margin), true),
                 reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
   };
-  auto earliest = [&](const Real& tau) { return first_window(tau, tau_end, window_start, window_end, passes); };
+  Real sampled_until = -1;
+  auto earliest = [&](const Real& tau) {
+    return first_window(tau, tau_end, window_start, window_end, passes, sampled_until);
+  };
   return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
 }
 

@@ -11,6 +11,8 @@
 // not grow with ω.  A zero where f' ≤ 0 (a touch, or an inward crossing) is not a collision.
 #pragma once
 
+#include "billiards/dynamics/certified_scan.hpp"
+#include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/flight.hpp"
 
 #include <boost/math/constants/constants.hpp>
@@ -52,6 +54,18 @@ struct BasicDrivenState : BasicState<Real> {
 };
 using DrivenState = BasicDrivenState<double>;
 
+/// The exit-time searches of one driven flight (lab or quivering walls) from one state: the
+/// guiding line and the bounds that every wall's search starts from are computed once per
+/// flight, not once per wall (`collision` asks the flight for it with `scan_from(s)`).  It
+/// refers to the flight and the state, which must outlive it.
+template <class Flight>
+struct DrivenScan {
+  using Real = typename Flight::Scalar;
+  scan::Quiver<Flight, BasicDrivenState<Real>> quiver;
+  Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const;
+  Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const;
+};
+
 /// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0).
 template <class Real>
 struct BasicPeriodicDriveFlight {
@@ -67,8 +81,13 @@ struct BasicPeriodicDriveFlight {
   /// Appendix B: v(t) = v_s + (F/mω)[sin θ(t) − sin θ_s],
   /// x(t) = x_s + [v_s − (F/mω) sin θ_s](t − t_s) − (F/mω²)[cos θ(t) − cos θ_s].
   State advance(const State& s, const Real& t) const;
-  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
-  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
+  DrivenScan<BasicPeriodicDriveFlight> scan_from(const State& s) const { return {{*this, s}}; }
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
+    return scan_from(s).exit_time(w, t_end);
+  }
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
+    return scan_from(s).exit_time(w, t_end);
+  }
 };
 using PeriodicDriveFlight = BasicPeriodicDriveFlight<double>;
 
@@ -99,15 +118,25 @@ struct BasicQuiveringWallFlight {
   State advance(const State& s, const Real& t) const;
   /// ḋ, the walls' velocity at the state's time.
   Vec2T<Real> wall_velocity(const State& s) const { return -accel / omega * s.sin_phase; }
-  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
-  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
+  /// The lab flight's scan, seen from the walls: guiding velocity ẏ, velocity relative to the
+  /// walls ẏ − ḋ.
+  DrivenScan<BasicQuiveringWallFlight> scan_from(const State& s) const {
+    return {{*this, s, s.v, s.v - wall_velocity(s)}};
+  }
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
+    return scan_from(s).exit_time(w, t_end);
+  }
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
+    return scan_from(s).exit_time(w, t_end);
+  }
 };
 using QuiveringWallFlight = BasicQuiveringWallFlight<double>;
 
-/// Reflection off a moving wall: v' = v − 2((v − ḋ)·n)n (overloads collision.hpp's bounce).
-template <class Real>
-void bounce(const BasicQuiveringWallFlight<Real>& flight, BasicDrivenState<Real>& s, const BasicHit<Real>& hit) {
-  s = flight.advance(s, hit.t);
+/// Reflection off a moving wall: v' = v − 2((v − ḋ)·n)n (overloads collision.hpp's bounce;
+/// `HitT` as there).
+template <class Real, class HitT>
+void bounce(const BasicQuiveringWallFlight<Real>& flight, BasicDrivenState<Real>& s, const HitT& hit) {
+  s = state_at(flight, s, hit);
   s.x = hit.point;
   s.v -= 2 * (s.v - flight.wall_velocity(s)).dot(hit.normal) * hit.normal;
 }

@@ -34,6 +34,8 @@ struct BasicSegmentWall {
   V normal;    // outward unit normal (right of a→b)
   V dir;       // (b - a) / |b - a|²
   Real slack;  // absolute tolerance along the segment
+  V bound_center;     // a disk holding the segment and its span's slack
+  Real bound_radius;
 
   explicit BasicSegmentWall(const geometry::Segment& s) : a(s.a.cast<Real>()), b(s.b.cast<Real>()) {
     const V d = b - a;
@@ -42,6 +44,8 @@ struct BasicSegmentWall {
     using std::max;
     slack = span_slack_ulps<Real> * max({Real(a.template lpNorm<Eigen::Infinity>()),
                                          Real(b.template lpNorm<Eigen::Infinity>()), Real(d.norm())});
+    bound_center = (a + b) / 2;
+    bound_radius = d.norm() / 2 + slack;
   }
   /// Is p (on the supporting line, to rounding) within the segment, ends included?
   bool within_span(const V& p) const {
@@ -69,6 +73,8 @@ struct BasicArcWall {
   bool focusing;       // region inside the circle (sweep > 0)
   bool full;           // a whole circle
   Real slack;          // absolute tolerance (distance units)
+  V bound_center;      // a disk holding the arc and its span's slack: the one on its chord
+  Real bound_radius;   // (Thales) up to a half circle, else the circle's own
 
   explicit BasicArcWall(const geometry::Arc& arc)
       : center(arc.center.cast<Real>()), radius(arc.radius), radius2(radius * radius),
@@ -79,6 +85,9 @@ struct BasicArcWall {
     to = focusing ? t : s;
     using std::max;
     slack = span_slack_ulps<Real> * max(radius, Real(center.template lpNorm<Eigen::Infinity>()));
+    const bool chord = !full && ccw_extent <= geometry::pi;
+    bound_center = chord ? V(center + (from + to) / 2) : center;
+    bound_radius = (chord ? Real((to - from).norm() / 2) : radius) + slack;
   }
   /// Is p (on the circle, to rounding) within the arc, ends included?
   bool within_span(const V& p) const {
