@@ -42,21 +42,6 @@ int crossings(const BasicArcWall<Real>& w, const Vec2T<Real>& p) {
   return n;
 }
 
-/// Distance from p to the wall (exact for segments; arcs: to the circle, within span).
-template <class Real>
-Real distance(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p) {
-  const Real s = std::clamp(Real((p - w.a).dot(w.dir)), Real(0), Real(1));
-  return (p - (w.a + s * (w.b - w.a))).norm();
-}
-template <class Real>
-Real distance(const BasicArcWall<Real>& w, const Vec2T<Real>& p) {
-  using std::abs;
-  const Vec2T<Real> u = p - w.center;
-  const Vec2T<Real> on = w.center + w.radius * u / u.norm();
-  if (w.within_span(on)) return abs(u.norm() - w.radius);
-  return std::min(Real((p - (w.center + w.from)).norm()), Real((p - (w.center + w.to)).norm()));
-}
-
 }  // namespace
 
 template <class Real>
@@ -96,11 +81,11 @@ template <class Real>
 bool BasicTable<Real>::contains(const V& p, double tolerance) const {
   int winding = 0;
   for (const auto& w : segments_) {
-    if (distance(w, p) <= tolerance) return true;
+    if (w.distance(p) <= tolerance) return true;
     winding += crossings(w, p);
   }
   for (const auto& w : arcs_) {
-    if (distance(w, p) <= tolerance) return true;
+    if (w.distance(p) <= tolerance) return true;
     winding += crossings(w, p);
   }
   return winding != 0;
@@ -110,8 +95,8 @@ template <class Real>
 Real BasicTable<Real>::wall_distance(const V& p) const {
   using std::min;
   Real d = std::numeric_limits<double>::infinity();
-  for (const auto& w : segments_) d = min(d, distance(w, p));
-  for (const auto& w : arcs_) d = min(d, distance(w, p));
+  for (const auto& w : segments_) d = min(d, w.distance(p));
+  for (const auto& w : arcs_) d = min(d, w.distance(p));
   return d;
 }
 

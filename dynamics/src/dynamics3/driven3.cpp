@@ -28,7 +28,7 @@ DrivenState3 PeriodicDriveFlight3::start(const State3& s) const {
 DrivenState3 PeriodicDriveFlight3::advance(const State& s, double t) const {
   const double tau = t - s.t;
   State r = s;
-  r.set_phase(s.phase + static_cast<long double>(omega) * tau);
+  r.set_phase(dynamics::advance_phase(s.phase, omega, tau));
   const Vec3 amp_v = accel / omega, amp_x = accel / (omega * omega);
   r.v = s.v + amp_v * (r.sin_phase - s.sin_phase);
   r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * (r.cos_phase - s.cos_phase);
@@ -39,7 +39,8 @@ DrivenState3 PeriodicDriveFlight3::advance(const State& s, double t) const {
 double PeriodicDriveFlight3::exit_time(const State& s, const PlaneWall& w, double t_end) const {
   // A face of a convex polyhedron has no span: the first plane crossed outward is the exit.
   const double tau = dynamics::scan::driven_exit_through_plane(Quiver3(*this, s), w.normal, Vec3(w.normal * w.offset),
-                                                               w.slack, t_end - s.t, no_window_passed, everywhere);
+                                                               w.slack, t_end - s.t, no_window_passed, everywhere,
+                                                               dynamics::scan::no_clearance);
   return tau == never ? never : s.t + tau;
 }
 
@@ -61,13 +62,19 @@ double PeriodicDriveFlight3::exit_time(const State& s, const TriangleWall& w, do
   };
   auto in_span = [&](const Vec3& x) { return w.within_span(x); };
   const double tau =
-      dynamics::scan::driven_exit_through_plane(q, w.normal, w.p[0], w.slack, t_end - s.t, passes, in_span);
+      dynamics::scan::driven_exit_through_plane(q, w.normal, w.p[0], w.slack, t_end - s.t, passes, in_span,
+                                                dynamics::scan::no_clearance);
   return tau == never ? never : s.t + tau;
 }
 
 double PeriodicDriveFlight3::exit_time(const State& s, const SphereWall& w, double t_end) const {
-  const double tau = dynamics::scan::driven_exit_through_sphere(Quiver3(*this, s), w.center, w.radius, w.focusing,
-                                                                w.slack, t_end - s.t, no_window_passed, everywhere);
+  const Quiver3 q(*this, s);
+  auto clearance = [&](double tau) {
+    const auto [a, b] = q.sweep(tau);
+    return dynamics::scan::segment_sphere_distance(a, b, w.center, w.radius);
+  };
+  const double tau = dynamics::scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack,
+                                                                t_end - s.t, no_window_passed, everywhere, clearance);
   return tau == never ? never : s.t + tau;
 }
 

@@ -10,6 +10,9 @@
 #pragma once
 
 #include "billiards/dynamics/flight.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
+
+#include <boost/math/constants/constants.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -57,7 +60,11 @@ template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolF
       return never;
     }
     const auto p = sample(tau);
-    const Real tol = tolerance(tau);
+    // τ advances by at least `floor`, over which f changes by up to |f'| floor: the band must
+    // be that wide, or a root could fall between two samples that both miss it (found in MPFR,
+    // where a creeping flight's rounding band was narrower than that after 1.8e9 s).
+    const Real floor = 4 * eps<Real> * max(tau, Real(1e-300));
+    const Real tol = tolerance(tau) + floor * abs(p.df);
     Real s;
     if (abs(p.f) <= tol) {
       // At the wall to rounding: an outward crossing in the span is the collision.
@@ -87,7 +94,7 @@ template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolF
       s = min(quadratic, p.cap);
     }
     // Keep a floor so that τ advances in floating point; it is far below any physical time.
-    tau += max(s, Real(4 * eps<Real> * max(tau, Real(1e-300))));
+    tau += max(s, floor);
   }
   throw std::runtime_error("certified root isolation did not converge in a million steps");
 }
@@ -104,10 +111,47 @@ Real first_window(Real tau, const Real& tau_end, StartFn window_start, EndFn win
     const Real start = window_start(tau);
     if (start == never || start > tau_end) return never;
     const Real end = window_end(start);
-    if (!(end > start) || !passes(start, end)) return start;
+    // (A window without end, of a guide standing still, is not passed: guide(∞) = g0 + 0·∞.)
+    if (!(end > start) || end == never || !passes(start, end)) return start;
     if (end >= tau_end) return never;
     tau = end;
   }
+}
+
+/// The `earliest` of a driven flight whose guide creeps (moves less than δ per period, as for a
+/// particle nearly at rest at a drive phase near 0): from τ, the first time ≥ τ at which the
+/// oscillation segment may come within rounding of the wall.  The particle stays on that
+/// segment, which moves rigidly at |u|; so while `clearance(τ)`, a lower bound on its distance
+/// from the wall within the span, exceeds the rounding band, no collision can occur before
+/// τ + clearance/|u|, and the scan jumps there (to the next window) instead of sampling every
+/// period — 10⁸ of them for the clover scaled by 1e-6 from a speed of 1e-15.  A guide that
+/// stands still (u = 0) gives a periodic f: a period scanned without a collision, or a segment
+/// clear of the wall, means no collision ever.  Jumps shorter than a period stop: sampling it
+/// costs no more.
+template <class Q, class Real, class Next, class Clearance, class TolFn>
+Real creep(const Q& q, Real tau, const Real& tau_end, Next next_window, Clearance clearance, TolFn tolerance) {
+  for (;;) {
+    if (tau == never || tau > tau_end) return never;
+    if (q.speed == 0 && tau >= q.period) return never;
+    const Real gap = clearance(tau) - 2 * tolerance(tau);
+    if (!(gap > 0)) return tau;
+    if (q.speed == 0) return never;
+    if (gap < q.speed * q.period) return tau;
+    tau = next_window(Real(tau + gap / q.speed));
+  }
+}
+
+/// No clearance known (walls whose distance from a segment is not computed): only a guide that
+/// stands still is helped by `creep`.
+inline constexpr auto no_clearance = [](const auto& tau) { return std::decay_t<decltype(tau)>(0); };
+
+/// Distance from the segment [p, q] to the sphere (circle) of centre c and radius r: the
+/// segment's distances from c fill [nearest, farthest].
+template <class V, class Real>
+Real segment_sphere_distance(const V& p, const V& q, const V& c, const Real& r) {
+  using std::max;
+  const Real nearest = point_segment_distance(c, p, q), farthest = max((p - c).norm(), (q - c).norm());
+  return max({Real(nearest - r), Real(r - farthest), Real(0)});
 }
 
 /// Time, from τ0, at which the linear function ℓ(τ) = l0 + l1 (τ − τ0) first reaches level L
@@ -148,8 +192,13 @@ struct Quiver {
   const State& s;
   V u, g0;
   V v0;              // velocity relative to the walls at τ = 0
+  V amp;             // F/(mω²): x(τ) − guide(τ) = −amp cos θ(τ)
   Real speed_bound;  // bound on |v| at any time of this flight
   Real delta;        // |F|/(mω²) ≥ |oscillation|
+  Real speed;          // |u|
+  Real period;         // 2π/ω
+  bool creeping;       // the guide moves less than δ per period (see `creep`)
+  Real rounding_rate;  // how fast the rounding of x(τ) grows with τ (see `at`)
 
   /// The lab picture: s.v is the particle's velocity between fixed walls.
   Quiver(const Flight& f, const State& st) : Quiver(f, st, st.v - f.accel / f.omega * st.sin_phase, st.v) {}
@@ -157,20 +206,35 @@ struct Quiver {
   /// velocity relative to the walls at the start; s.x is the position relative to the walls.
   Quiver(const Flight& f, const State& st, const V& guiding_velocity, const V& relative_velocity)
       : flight(f), s(st), u(guiding_velocity), v0(relative_velocity) {
-    const V amp_x = f.accel / (f.omega * f.omega);
-    g0 = st.x + amp_x * st.cos_phase;
-    speed_bound = u.norm() + f.accel.norm() / f.omega;
+    amp = f.accel / (f.omega * f.omega);
+    g0 = st.x + amp * st.cos_phase;
+    speed = u.norm();
+    speed_bound = speed + f.accel.norm() / f.omega;
     delta = f.accel.norm() / (f.omega * f.omega);
+    period = 2 * boost::math::constants::pi<Real>() / f.omega;
+    creeping = speed * period < delta;
+    rounding_rate = creeping ? speed : speed_bound;
   }
   V guide(const Real& tau) const { return g0 + u * tau; }
+  /// The oscillation segment guide(τ) ± amp, which holds x(τ) and which the particle sweeps
+  /// once per period.
+  std::pair<V, V> sweep(const Real& tau) const {
+    const V g = guide(tau);
+    return {g - amp, g + amp};
+  }
   /// Position and velocity τ after the start (the closed form of advance()).  Within one
   /// flight ωτ stays moderate, so a phase in Real is accurate to ~1e-12 rad in double, which
-  /// moves the particle by 1e-12 |F|/(mω²): no extended-precision reduction is needed here.
+  /// moves the particle by 1e-12 |F|/(mω²).  A creeping flight may last 10⁸ periods: its phase
+  /// is computed as advance() does (advance_phase), since the rounding of ωτ, times the speed
+  /// |F|/(mω), would widen the scan's tolerance band (`rounding_rate`) beyond the guide's
+  /// approach to the wall per period, and a touch near a turning point would count periods
+  /// early (measured: 1-4 periods of 1.8e9 before, with the phase in long double).
   std::pair<V, V> at(const Real& tau) const {
     using std::cos;
     using std::sin;
     if (tau == 0) return {s.x, v0};
-    const Real omega = flight.omega, th = Real(s.phase) + omega * tau;
+    const Real omega = flight.omega;
+    const Real th = creeping ? Real(advance_phase(s.phase, omega, tau)) : Real(Real(s.phase) + omega * tau);
     return {g0 + u * tau - flight.accel / (omega * omega) * Real(cos(th)), u + flight.accel / omega * Real(sin(th))};
   }
 };
@@ -181,10 +245,11 @@ struct Quiver {
 /// first come within B (and rounding) of zero.  While it is that close — the window, widened
 /// to twice the margin so that the scan leaves it for good — `passes(τ, end)` may declare that
 /// no point of the window can be a collision (the wall's span is out of reach), and the whole
-/// window is passed.
-template <class Q, class V, class Real, class Passes, class InSpan>
+/// window is passed.  `clearance(τ)` bounds the distance of the oscillation segment from the
+/// wall within its span from below (see `creep`).
+template <class Q, class V, class Real, class Passes, class InSpan, class Clearance>
 Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& slack, const Real& tau_end,
-                               Passes passes, InSpan in_span) {
+                               Passes passes, InSpan in_span, Clearance clearance) {
   using std::abs;
   const Real n_a = abs(n.dot(q.flight.accel));
   const Real B = n_a / (q.flight.omega * q.flight.omega);
@@ -205,28 +270,36 @@ Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& s
     const Real margin = B + tolerance(start), guide = g_off + nu * start;
     return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
   };
-  auto earliest = [&](const Real& tau) { return first_window(tau, tau_end, window_start, window_end, passes); };
+  auto next_window = [&](const Real& tau) { return first_window(tau, tau_end, window_start, window_end, passes); };
+  auto earliest = [&](const Real& tau) {
+    const Real t = next_window(tau);
+    return q.creeping ? creep(q, t, tau_end, next_window, clearance, tolerance) : t;
+  };
   return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
 }
 
 /// The same through the circle (2-D) or sphere (3-D) of centre c and radius r, the region
 /// inside it when `focusing`: f = ±(|x − c| − r), |x − c| within δ of the guiding line's
 /// distance to c.
-template <class Q, class V, class Real, class Passes, class InSpan>
+template <class Q, class V, class Real, class Passes, class InSpan, class Clearance>
 Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focusing, const Real& slack,
-                                const Real& tau_end, Passes passes, InSpan in_span) {
+                                const Real& tau_end, Passes passes, InSpan in_span, Clearance clearance) {
+  using std::abs;
   using std::max;
   const Real sign = focusing ? 1 : -1;
-  const Real Vb = q.speed_bound, A = q.flight.accel.norm(), delta = q.delta;
+  const Real Vb = q.speed_bound, A = q.flight.accel.norm(), delta = q.delta, rate = q.rounding_rate;
   const Real scale = (q.s.x - c).norm() + r;
-  auto tolerance = [&](const Real& tau) { return Real(slack + 8 * eps<Real> * (scale + Vb * tau + delta)); };
+  auto tolerance = [&](const Real& tau) { return Real(slack + 8 * eps<Real> * (scale + rate * tau + delta)); };
   auto sample = [&](const Real& tau) {
     const auto [x, v] = q.at(tau);
     const V p = x - c;
-    const Real rho = p.norm();
+    const Real rho = p.norm(), f = sign * (rho - r);
+    // Nearer the centre than the sphere, the curvature bound below is poor (and at the centre
+    // undefined: a particle there never got away); |f'| ≤ |v| ≤ V is the bound there.
+    if (rho < abs(f)) return Sample<Real, V>{f, f < 0 ? Vb : Real(-Vb), Real(0), Real(never), x};
     // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
-    const Real M = 2 * Vb * Vb / max(rho, Real(1e-300)) + A;
-    return Sample<Real, V>{sign * (rho - r), sign * p.dot(v) / rho, M, rho / (2 * Vb), x};
+    const Real M = 2 * Vb * Vb / rho + A;
+    return Sample<Real, V>{f, sign * p.dot(v) / rho, M, rho / (2 * Vb), x};
   };
   // Before the start of a window the guide is farther than the margin from the sphere, on f's side.
   auto window_start = [&](const Real& tau) {
@@ -242,7 +315,11 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
     return min({reach_radius(start, g, q.u, Real(r + 2 * margin), true),
                 reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
   };
-  auto earliest = [&](const Real& tau) { return first_window(tau, tau_end, window_start, window_end, passes); };
+  auto next_window = [&](const Real& tau) { return first_window(tau, tau_end, window_start, window_end, passes); };
+  auto earliest = [&](const Real& tau) {
+    const Real t = next_window(tau);
+    return q.creeping ? creep(q, t, tau_end, next_window, clearance, tolerance) : t;
+  };
   return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
 }
 

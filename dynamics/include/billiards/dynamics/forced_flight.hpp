@@ -35,6 +35,23 @@ P reduce_phase(P theta) {
   return theta < 0 ? P(theta + two_pi) : theta;
 }
 
+/// θ + ω τ reduced to [0, 2π), to the rounding of the phase type even when ωτ is 10¹⁰ (a
+/// flight of 10⁸ periods, as a particle nearly at rest can make): ωτ in the phase type would
+/// keep only ~1e-10 rad there.  In hardware types ωτ is split into its rounding p and the
+/// exact remainder (fma), and only p is reduced (exactly, by fmod); the representation error
+/// of 2π then shifts the phase by the same small multiple for every τ in a period, a slightly
+/// different ω rather than noise.
+template <class P, class Real>
+P advance_phase(const P& theta, const Real& omega, const Real& tau) {
+  if constexpr (std::is_floating_point_v<Real>) {
+    using std::fma;
+    const Real p = omega * tau, e = fma(omega, tau, -p);
+    return reduce_phase(P(theta + reduce_phase(P(p)) + P(e)));
+  } else {
+    return reduce_phase(P(theta + P(omega) * P(tau)));
+  }
+}
+
 /// State under a periodic drive: the state plus the drive's phase.
 template <class Real>
 struct BasicDrivenState : BasicState<Real> {
