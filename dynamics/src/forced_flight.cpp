@@ -87,8 +87,9 @@ Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t
   // segment's span.
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
-  const Real tau =
-      scan::driven_exit_through_plane(q, w.normal, w.a, w.slack, Real(t_end - t0), passes, in_span, clearance_of(q, w));
+  const Real tau = scan::with_creep(q, [&](auto clearance) {
+    return scan::driven_exit_through_plane(q, w.normal, w.a, w.slack, Real(t_end - t0), passes, in_span, clearance);
+  }, clearance_of(q, w));
   return tau == never ? Real(never) : Real(t0 + tau);
 }
 
@@ -96,8 +97,10 @@ template <class Real, class Q>
 Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, const Real& t_end) {
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
-  const Real tau = scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - t0),
-                                                    passes, in_span, clearance_of(q, w));
+  const Real tau = scan::with_creep(q, [&](auto clearance) {
+    return scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - t0), passes,
+                                            in_span, clearance);
+  }, clearance_of(q, w));
   return tau == never ? Real(never) : Real(t0 + tau);
 }
 

@@ -35,20 +35,21 @@ P reduce_phase(P theta) {
   return theta < 0 ? P(theta + two_pi) : theta;
 }
 
-/// θ + ω τ reduced to [0, 2π), to the rounding of the phase type even when ωτ is 10¹⁰ (a
-/// flight of 10⁸ periods, as a particle nearly at rest can make): ωτ in the phase type would
-/// keep only ~1e-10 rad there.  In hardware types ωτ is split into its rounding p and the
-/// exact remainder (fma), and only p is reduced (exactly, by fmod); the representation error
-/// of 2π then shifts the phase by the same small multiple for every τ in a period, a slightly
-/// different ω rather than noise.
+/// θ + ω τ (for set_phase to reduce), to the rounding of the phase type even when ωτ is 10¹⁰
+/// (a flight of 10⁸ periods, as a particle nearly at rest can make): ωτ in the phase type
+/// would keep only ~1e-10 rad there.  Beyond 2²⁰ rad, in hardware types, ωτ is split into its
+/// rounding p and the exact remainder (fma), and only p is reduced (exactly, by fmod); the
+/// representation error of 2π then shifts the phase by the same small multiple for every τ in
+/// a period, a slightly different ω rather than noise.
 template <class P, class Real>
 P advance_phase(const P& theta, const Real& omega, const Real& tau) {
   if constexpr (std::is_floating_point_v<Real>) {
     using std::fma;
-    const Real p = omega * tau, e = fma(omega, tau, -p);
-    return reduce_phase(P(theta + reduce_phase(P(p)) + P(e)));
+    const Real p = omega * tau;
+    if (p < 0x1p20) return theta + P(omega) * P(tau);  // (to 1e-13 rad, as always)
+    return theta + reduce_phase(P(p)) + P(fma(omega, tau, -p));
   } else {
-    return reduce_phase(P(theta + P(omega) * P(tau)));
+    return theta + P(omega) * P(tau);
   }
 }
 
