@@ -43,7 +43,7 @@ struct Sample {
 /// that extends f piece by piece (an integrated flight, step by step) continues from there.
 /// Inlined into each caller so that its lambdas fold into one loop (measured with callgrind:
 /// 12% fewer instructions than a call).
-template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolFn>
+template <bool local_band = false, class Real, class SampleFn, class EarliestFn, class SpanFn, class TolFn>
 [[gnu::always_inline]] inline Real first_outward_crossing(SampleFn sample, EarliestFn earliest, SpanFn in_span,
                                                           TolFn tolerance, const Real& tau_end,
                                                           Real* resume = nullptr) {
@@ -62,9 +62,12 @@ template <class Real, class SampleFn, class EarliestFn, class SpanFn, class TolF
     const auto p = sample(tau);
     // τ advances by at least `floor`, over which f changes by up to |f'| floor: the band must
     // be that wide, or a root could fall between two samples that both miss it (found in MPFR,
-    // where a creeping flight's rounding band was narrower than that after 1.8e9 s).
+    // where a creeping flight's rounding band was narrower than that after 1.8e9 s).  Callers'
+    // tolerances include it through a bound on |f'|, except where that bound is too wide
+    // (`local_band`: creeping flights, where it made touches count periods early).
     const Real floor = 4 * eps<Real> * max(tau, Real(1e-300));
-    const Real tol = max(tolerance(tau), Real(floor * abs(p.df)));
+    Real tol = tolerance(tau);
+    if constexpr (local_band) tol = max(tol, Real(floor * abs(p.df)));
     Real s;
     if (abs(p.f) <= tol) {
       // At the wall to rounding: an outward crossing in the span is the collision.
@@ -129,17 +132,13 @@ template <class Real, class StartFn, class EndFn, class Passes>
 /// clear of the wall, means no collision ever.  Jumps shorter than a period stop: sampling it
 /// costs no more.
 template <class Q, class Real, class Clearance, class TolFn>
-[[gnu::noinline]] Real creep(const Q& q, Real tau, const Real& tau_end, Clearance clearance, TolFn tolerance) {
-  const Real period = q.period();
-  for (;;) {
-    if (tau == never || tau > tau_end) return never;
-    if (q.speed == 0 && tau >= period) return never;
-    const Real gap = clearance(tau) - 2 * tolerance(tau);
-    if (!(gap > 0)) return tau;
-    if (q.speed == 0) return never;
-    if (gap < q.speed * period) return tau;
-    tau += gap / q.speed;
-  }
+[[gnu::noinline]] Real creep(const Q& q, const Real& tau, const Real& tau_end, Clearance clearance, TolFn tolerance) {
+  if (tau == never || tau > tau_end) return never;
+  if (q.speed == 0 && tau >= q.period()) return never;
+  const Real gap = clearance(tau) - 2 * tolerance(tau);
+  if (!(gap > 0)) return tau;
+  if (q.speed == 0) return never;
+  return gap < q.speed * q.period() ? tau : Real(tau + gap / q.speed);
 }
 
 /// Distance from the segment [p, q] to the sphere (circle) of centre c and radius r: the
@@ -276,7 +275,9 @@ Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& s
   const Real n_a = abs(n.dot(q.flight.accel));
   const Real B = n_a / (q.flight.omega * q.flight.omega);
   const Real nu = n.dot(q.u), g_off = n.dot(q.g0 - a);
-  auto tolerance = [=](const Real& tau) { return Real(slack + 8 * eps<Real> * (abs(g_off) + abs(nu) * tau + B)); };
+  // (|f'| ≤ |nu| + n_a/ω: the band covers f's change over the scan's step floor.)
+  const Real rate = abs(nu) + n_a / q.flight.omega;
+  auto tolerance = [=](const Real& tau) { return Real(slack + 8 * eps<Real> * (abs(g_off) + rate * tau + B)); };
   auto sample = [&](const Real& tau) {
     const auto [x, v] = q.at(tau);
     return Sample<Real, V>{n.dot(x - a), n.dot(v), n_a, never, x};
@@ -293,11 +294,17 @@ Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& s
     return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
   };
   auto earliest = [&](const Real& tau) {
-    const Real t = first_window(tau, tau_end, window_start, window_end, passes);
-    if constexpr (std::is_same_v<Clearance, NotCreeping>) return t;
-    else return creep(q, t, tau_end, clearance, tolerance);
+    Real t = first_window(tau, tau_end, window_start, window_end, passes);
+    if constexpr (!std::is_same_v<Clearance, NotCreeping>) {
+      for (;;) {  // jumps and windows in turn, until neither moves on
+        const Real next = creep(q, t, tau_end, clearance, tolerance);
+        if (next == t || next == never) return next;
+        t = first_window(next, tau_end, window_start, window_end, passes);
+      }
+    }
+    return t;
   };
-  return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
+  return first_outward_crossing<!std::is_same_v<Clearance, NotCreeping>>(sample, earliest, in_span, tolerance, tau_end);
 }
 
 /// The same through the circle (2-D) or sphere (3-D) of centre c and radius r, the region
@@ -306,7 +313,6 @@ Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& s
 template <class Q, class V, class Real, class Passes, class InSpan, class Clearance>
 Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focusing, const Real& slack,
                                 const Real& tau_end, Passes passes, InSpan in_span, Clearance clearance) {
-  using std::abs;
   using std::max;
   const Real sign = focusing ? 1 : -1;
   const Real Vb = q.speed_bound, A = q.flight.accel.norm(), delta = q.delta, rate = q.rounding_rate;
@@ -315,13 +321,12 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
   auto sample = [&](const Real& tau) {
     const auto [x, v] = q.at(tau);
     const V p = x - c;
-    const Real rho = p.norm(), f = sign * (rho - r);
-    // Nearer the centre than the sphere, the curvature bound below is poor (and at the centre
-    // undefined: a particle there never got away); |f'| ≤ |v| ≤ V is the bound there.
-    if (rho < abs(f)) return Sample<Real, V>{f, f < 0 ? Vb : Real(-Vb), Real(0), Real(never), x};
-    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
-    const Real M = 2 * Vb * Vb / rho + A;
-    return Sample<Real, V>{f, sign * p.dot(v) / rho, M, rho / (2 * Vb), x};
+    const Real rho = p.norm(), floored = max(rho, Real(1e-300));
+    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.  (At the
+    // centre itself p̂·v was 0/0 and the scan never ended; the floored ρ gives 0, and steps of
+    // ρ/2V that grow 1.5× each.)
+    const Real M = 2 * Vb * Vb / floored + A;
+    return Sample<Real, V>{sign * (rho - r), sign * p.dot(v) / floored, M, rho / (2 * Vb), x};
   };
   // Before the start of a window the guide is farther than the margin from the sphere, on f's side.
   auto window_start = [&](const Real& tau) {
@@ -338,11 +343,17 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
                 reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
   };
   auto earliest = [&](const Real& tau) {
-    const Real t = first_window(tau, tau_end, window_start, window_end, passes);
-    if constexpr (std::is_same_v<Clearance, NotCreeping>) return t;
-    else return creep(q, t, tau_end, clearance, tolerance);
+    Real t = first_window(tau, tau_end, window_start, window_end, passes);
+    if constexpr (!std::is_same_v<Clearance, NotCreeping>) {
+      for (;;) {  // jumps and windows in turn, until neither moves on
+        const Real next = creep(q, t, tau_end, clearance, tolerance);
+        if (next == t || next == never) return next;
+        t = first_window(next, tau_end, window_start, window_end, passes);
+      }
+    }
+    return t;
   };
-  return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
+  return first_outward_crossing<!std::is_same_v<Clearance, NotCreeping>>(sample, earliest, in_span, tolerance, tau_end);
 }
 
 }  // namespace billiards::dynamics::scan
