@@ -56,10 +56,9 @@ auto BasicPeriodicDriveFlight<Real>::start(const BasicState<Real>& s) const -> S
 
 template <class Real>
 auto BasicPeriodicDriveFlight<Real>::advance(const State& s, const Real& t) const -> State {
-  using P = PhaseOf<Real>;
   const Real tau = t - s.t;
   State r = s;
-  r.set_phase(s.phase + P(omega) * P(tau));
+  r.set_phase(advance_phase(s.phase, omega, tau));
   const Vec2T<Real> amp_v = accel / omega, amp_x = accel / (omega * omega);
   r.v = s.v + amp_v * Real(r.sin_phase - s.sin_phase);
   r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * Real(r.cos_phase - s.cos_phase);
@@ -84,6 +83,15 @@ bool may_come_near(const Q& q, const Wall& w, const Real& tau_end) {
   return scan::reach_radius(Real(0), g, q.u, reach, false) <= tau_end;
 }
 
+/// The distance of q's oscillation segment from the wall at τ (scan::creep's clearance).
+template <class Q, class Wall>
+auto clearance_of(const Q& q, const Wall& w) {
+  return [&q, &w](const auto& tau) {
+    const auto [p, r] = q.sweep(tau);
+    return w.distance(p, r);
+  };
+}
+
 /// Exit time through one wall of a flight described by the Quiver q (lab or quivering walls).
 template <class Real, class Q>
 Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t0, const Real& t_end) {
@@ -92,7 +100,9 @@ Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t
   // segment's span.
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
-  const Real tau = scan::driven_exit_through_plane(q, w.normal, w.a, w.slack, Real(t_end - t0), passes, in_span);
+  const Real tau = scan::with_creep(q, [&](auto clearance) {
+    return scan::driven_exit_through_plane(q, w.normal, w.a, w.slack, Real(t_end - t0), passes, in_span, clearance);
+  }, clearance_of(q, w));
   return tau == never ? Real(never) : Real(t0 + tau);
 }
 
@@ -101,8 +111,10 @@ Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, c
   if (!may_come_near(q, w, Real(t_end - t0))) return Real(never);
   auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
-  const Real tau = scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - t0),
-                                                    passes, in_span);
+  const Real tau = scan::with_creep(q, [&](auto clearance) {
+    return scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - t0), passes,
+                                            in_span, clearance);
+  }, clearance_of(q, w));
   return tau == never ? Real(never) : Real(t0 + tau);
 }
 
@@ -122,10 +134,9 @@ auto DrivenScan<Flight>::exit_time(const BasicArcWall<Real>& w, const Real& t_en
 
 template <class Real>
 auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t) const -> State {
-  using P = PhaseOf<Real>;
   const Real tau = t - s.t;
   State r = s;
-  r.set_phase(s.phase + P(omega) * P(tau));
+  r.set_phase(advance_phase(s.phase, omega, tau));
   r.x = s.x + s.v * tau - accel / (omega * omega) * Real(r.cos_phase - s.cos_phase);
   r.t = t;
   return r;
@@ -165,7 +176,14 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicSegmen
     const auto [x, v] = parabola(s, accel, tau);
     return Sample<Real>{w.normal.dot(x - w.a), w.normal.dot(v), abs(n_a), never, x};
   };
-  auto earliest = [](const Real& tau) { return tau; };
+  // f is a parabola: once it falls (f' ≤ 0) under a force away from the wall, or is beyond the
+  // wall and rising under a force towards it, it never crosses outward again.  Without this
+  // the scan, with no horizon, stepped on until τ² overflowed and f became NaN.
+  auto earliest = [&](const Real& tau) {
+    const auto p = sample(tau);
+    const bool never_again = (p.df <= 0 && n_a <= 0) || (p.f > tolerance(tau) && p.df >= 0 && n_a >= 0);
+    return never_again ? Real(never) : tau;
+  };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
   const Real tau = first_outward_crossing(sample, earliest, in_span, tolerance, Real(t_end - s.t));
   return tau == never ? Real(never) : Real(s.t + tau);
@@ -173,7 +191,7 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicSegmen
 
 template <class Real>
 Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
-  using std::max;
+  using std::abs;
   const Real sign = w.focusing ? 1 : -1;
   const Real A = accel.norm();
   const Real scale = (s.x - w.center).norm() + w.radius;
@@ -183,14 +201,26 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicArcWal
   auto sample = [&](const Real& tau) {
     const auto [x, v] = parabola(s, accel, tau);
     const Vec2T<Real> p = x - w.center;
-    const Real rho = p.norm(), V = v.norm();
+    const Real rho = p.norm(), V = v.norm(), f = sign * (rho - w.radius);
+    // Nearer the centre than the circle (where the bound below fails: a particle at the centre
+    // never got away), f moves by at most V s + A s²/2 in time s.
+    if (rho < abs(f)) return Sample<Real>{f, f < 0 ? V : Real(-V), A, Real(never), x};
     // Over a step of length h ≤ ρ/(2V'), |v| ≤ V' = V + A h and |p| ≥ ρ/2.
-    const Real h = rho / (2 * (V + A) + Real(1e-300));
+    const Real h = rho / (2 * (V + A));
     const Real Vmax = V + A * h;
-    return Sample<Real>{sign * (rho - w.radius), sign * p.dot(v) / rho, 2 * Vmax * Vmax / max(rho, Real(1e-300)) + A,
-                        h, x};
+    return Sample<Real>{f, sign * p.dot(v) / rho, 2 * Vmax * Vmax / rho + A, h, x};
   };
-  auto earliest = [](const Real& tau) { return tau; };
+  // |p|² (p from the centre) is a quartic in τ whose Taylor coefficients at τ are |p|², 2p·v,
+  // |v|² + p·a, v·a and |a|²/4 ≥ 0: when the middle three are ≥ 0 the distance from the centre
+  // never decreases again, so f never rises again on a dispersing wall, and beyond a focusing
+  // one never returns.  (Otherwise, as for segments, the scan overflowed.)
+  auto earliest = [&](const Real& tau) {
+    const auto [x, v] = parabola(s, accel, tau);
+    const Vec2T<Real> p = x - w.center;
+    const bool receding = p.dot(v) >= 0 && v.squaredNorm() + p.dot(accel) >= 0 && v.dot(accel) >= 0;
+    const bool never_again = receding && (!w.focusing || p.norm() - w.radius > tolerance(tau));
+    return never_again ? Real(never) : tau;
+  };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
   const Real tau = first_outward_crossing(sample, earliest, in_span, tolerance, Real(t_end - s.t));
   return tau == never ? Real(never) : Real(s.t + tau);

@@ -42,21 +42,6 @@ int crossings(const BasicArcWall<Real>& w, const Vec2T<Real>& p) {
   return n;
 }
 
-/// Distance from p to the wall (exact for segments; arcs: to the circle, within span).
-template <class Real>
-Real distance(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p) {
-  const Real s = std::clamp(Real((p - w.a).dot(w.dir)), Real(0), Real(1));
-  return (p - (w.a + s * (w.b - w.a))).norm();
-}
-template <class Real>
-Real distance(const BasicArcWall<Real>& w, const Vec2T<Real>& p) {
-  using std::abs;
-  const Vec2T<Real> u = p - w.center;
-  const Vec2T<Real> on = w.center + w.radius * u / u.norm();
-  if (w.within_span(on)) return abs(u.norm() - w.radius);
-  return std::min(Real((p - (w.center + w.from)).norm()), Real((p - (w.center + w.to)).norm()));
-}
-
 /// Can p be within `tol` of the wall?  The distance to the supporting line or circle bounds
 /// the distance to the wall from below and needs no square root or division; false only when
 /// it exceeds 2 tol, far beyond the rounding of either distance.
@@ -112,7 +97,7 @@ template <class Real>
 bool BasicTable<Real>::contains(const V& p, double tolerance) const {
   // (At tolerance 0 the bound leaves no room for rounding: the distance decides alone.)
   auto near = [&](const auto& w) {
-    return (tolerance == 0 || may_be_near(w, p, tolerance)) && distance(w, p) <= tolerance;
+    return (tolerance == 0 || may_be_near(w, p, tolerance)) && w.distance(p) <= tolerance;
   };
   int winding = 0;
   for (const auto& w : segments_) {
@@ -130,8 +115,8 @@ template <class Real>
 Real BasicTable<Real>::wall_distance(const V& p) const {
   using std::min;
   Real d = std::numeric_limits<double>::infinity();
-  for (const auto& w : segments_) d = min(d, distance(w, p));
-  for (const auto& w : arcs_) d = min(d, distance(w, p));
+  for (const auto& w : segments_) d = min(d, w.distance(p));
+  for (const auto& w : arcs_) d = min(d, w.distance(p));
   return d;
 }
 

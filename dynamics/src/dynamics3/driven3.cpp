@@ -10,6 +10,15 @@ using Quiver3 = dynamics::scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
 const auto no_window_passed = [](double, double) { return false; };  // no spans to cull by
 const auto everywhere = [](const Vec3&) { return true; };
 
+/// The distance of q's oscillation segment from the plane through a with normal n (the
+/// certified scan's clearance for a creeping flight).
+auto plane_clearance(const Quiver3& q, const Vec3& n, const Vec3& a) {
+  return [&q, n, a](double tau) {
+    const auto [p, r] = q.sweep(tau);
+    return dynamics::scan::segment_plane_distance(p, r, n, a);
+  };
+}
+
 }  // namespace
 
 void DrivenState3::set_phase(long double theta) {
@@ -28,7 +37,7 @@ DrivenState3 PeriodicDriveFlight3::start(const State3& s) const {
 DrivenState3 PeriodicDriveFlight3::advance(const State& s, double t) const {
   const double tau = t - s.t;
   State r = s;
-  r.set_phase(s.phase + static_cast<long double>(omega) * tau);
+  r.set_phase(dynamics::advance_phase(s.phase, omega, tau));
   const Vec3 amp_v = accel / omega, amp_x = accel / (omega * omega);
   r.v = s.v + amp_v * (r.sin_phase - s.sin_phase);
   r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * (r.cos_phase - s.cos_phase);
@@ -38,8 +47,12 @@ DrivenState3 PeriodicDriveFlight3::advance(const State& s, double t) const {
 
 double PeriodicDriveFlight3::exit_time(const State& s, const PlaneWall& w, double t_end) const {
   // A face of a convex polyhedron has no span: the first plane crossed outward is the exit.
-  const double tau = dynamics::scan::driven_exit_through_plane(Quiver3(*this, s), w.normal, Vec3(w.normal * w.offset),
-                                                               w.slack, t_end - s.t, no_window_passed, everywhere);
+  const Quiver3 q(*this, s);
+  const Vec3 a = w.normal * w.offset;
+  const double tau = dynamics::scan::with_creep(q, [&](auto clearance) {
+    return dynamics::scan::driven_exit_through_plane(q, w.normal, a, w.slack, t_end - s.t, no_window_passed, everywhere,
+                                                     clearance);
+  }, plane_clearance(q, w.normal, a));
   return tau == never ? never : s.t + tau;
 }
 
@@ -60,14 +73,24 @@ double PeriodicDriveFlight3::exit_time(const State& s, const TriangleWall& w, do
     return false;
   };
   auto in_span = [&](const Vec3& x) { return w.within_span(x); };
-  const double tau =
-      dynamics::scan::driven_exit_through_plane(q, w.normal, w.p[0], w.slack, t_end - s.t, passes, in_span);
+  // (The triangle's plane: a lower bound of the distance from the triangle.)
+  const double tau = dynamics::scan::with_creep(q, [&](auto clearance) {
+    return dynamics::scan::driven_exit_through_plane(q, w.normal, w.p[0], w.slack, t_end - s.t, passes, in_span,
+                                                     clearance);
+  }, plane_clearance(q, w.normal, w.p[0]));
   return tau == never ? never : s.t + tau;
 }
 
 double PeriodicDriveFlight3::exit_time(const State& s, const SphereWall& w, double t_end) const {
-  const double tau = dynamics::scan::driven_exit_through_sphere(Quiver3(*this, s), w.center, w.radius, w.focusing,
-                                                                w.slack, t_end - s.t, no_window_passed, everywhere);
+  const Quiver3 q(*this, s);
+  auto clearance = [&](double tau) {
+    const auto [a, b] = q.sweep(tau);
+    return dynamics::scan::segment_sphere_distance(a, b, w.center, w.radius);
+  };
+  const double tau = dynamics::scan::with_creep(q, [&](auto clearance) {
+    return dynamics::scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, t_end - s.t,
+                                                      no_window_passed, everywhere, clearance);
+  }, clearance);
   return tau == never ? never : s.t + tau;
 }
 

@@ -14,6 +14,7 @@
 #include "billiards/dynamics/certified_scan.hpp"
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/flight.hpp"
+#include "billiards/dynamics/phase.hpp"
 
 #include <boost/math/constants/constants.hpp>
 
@@ -21,21 +22,6 @@
 #include <type_traits>
 
 namespace billiards::dynamics {
-
-/// The drive's phase θ = ω t + phase is kept reduced to [0, 2π) in a type wider than double:
-/// long double for the hardware types, the reference type itself for MPFR.  A plain double
-/// ω t at ω = 2560π, t = 1e4 would keep only 8 digits.
-template <class Real>
-using PhaseOf = std::conditional_t<std::is_floating_point_v<Real>, long double, Real>;
-
-/// θ reduced to [0, 2π).
-template <class P>
-P reduce_phase(P theta) {
-  using std::fmod;
-  const P two_pi = boost::math::constants::two_pi<P>();
-  theta = fmod(theta, two_pi);
-  return theta < 0 ? P(theta + two_pi) : theta;
-}
 
 /// State under a periodic drive: the state plus the drive's phase.
 template <class Real>

@@ -23,6 +23,16 @@ using geometry::Vec2;
 using geometry::Vec2T;
 using geometry::cross;
 
+/// Distance from x to the segment [p, q] (a point when p = q), in any dimension.
+template <class V>
+auto point_segment_distance(const V& x, const V& p, const V& q) {
+  using Real = typename V::Scalar;
+  const V d = q - p;
+  const Real dd = d.squaredNorm();
+  const Real s = dd > 0 ? std::clamp(Real((x - p).dot(d) / dd), Real(0), Real(1)) : Real(0);
+  return Real((x - p - s * d).norm());
+}
+
 /// Relative slack of span tests, in units of the coordinate scale.
 template <class Real>
 inline const Real span_slack_ulps = 256 * std::numeric_limits<Real>::epsilon();
@@ -60,6 +70,16 @@ struct BasicSegmentWall {
     if (s <= 0) return a;
     if (s >= 1) return b;
     return p - normal * normal.dot(p - a);  // (not a + s (b − a), which rounds along the wall too)
+  }
+  /// Distance from p to the segment.
+  Real distance(const V& p) const { return point_segment_distance(p, a, b); }
+  /// Distance from the segment [p, q] to this one (to rounding): zero when they cross, else
+  /// the least distance from an end of one to the other.
+  Real distance(const V& p, const V& q) const {
+    using std::min;
+    const Real fp = normal.dot(p - a), fq = normal.dot(q - a), ga = cross(V(q - p), V(a - p)), gb = cross(V(q - p), V(b - p));
+    if (fp * fq <= 0 && ga * gb <= 0) return 0;
+    return min({distance(p), distance(q), point_segment_distance(a, p, q), point_segment_distance(b, p, q)});
   }
 };
 
@@ -108,6 +128,36 @@ struct BasicArcWall {
     const V u = p - center;
     const V n = u * Real(1 / sqrt(u.squaredNorm()));
     return {center + radius * n, focusing ? V(n) : V(-n)};
+  }
+  /// Distance from p to the arc: to the circle where p's radial projection is within the span,
+  /// else to the nearer end.
+  Real distance(const V& p) const {
+    using std::abs;
+    using std::min;
+    const V u = p - center;
+    const Real rho = u.norm();
+    if (rho > 0 && within_span(V(center + radius / rho * u))) return abs(rho - radius);
+    return min(Real((p - center - from).norm()), Real((p - center - to).norm()));
+  }
+  /// Distance from the segment [p, q] to the arc (to rounding): zero when the segment meets the
+  /// circle within the span; otherwise the nearest points are an end of the arc and a point of
+  /// [p, q], or an end of [p, q] or the foot of the perpendicular from the centre and its
+  /// nearest point of the arc.
+  Real distance(const V& p, const V& q) const {
+    using std::clamp;
+    using std::min;
+    using std::sqrt;
+    const V d = q - p, pc = p - center;
+    const Real dd = d.squaredNorm(), b = pc.dot(d), disc = b * b - dd * (pc.squaredNorm() - radius2);
+    if (dd > 0 && disc >= 0) {
+      for (const Real& root : {Real(-sqrt(disc)), Real(sqrt(disc))}) {
+        const Real s = (root - b) / dd;
+        if (s >= 0 && s <= 1 && within_span(V(p + s * d))) return 0;
+      }
+    }
+    const Real s = dd > 0 ? clamp(Real(-b / dd), Real(0), Real(1)) : Real(0);
+    return min({distance(p), distance(q), distance(V(p + s * d)), point_segment_distance(V(center + from), p, q),
+                point_segment_distance(V(center + to), p, q)});
   }
   /// Outward unit normal of the region at p.
   V normal_at(const V& p) const {
