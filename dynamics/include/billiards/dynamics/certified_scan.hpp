@@ -270,6 +270,29 @@ struct Quiver {
   }
 };
 
+/// The scan of a driven flight (`first_outward_crossing`) whose `earliest` passes the windows
+/// it can (`first_window`) and, for a creeping flight, lets `creep`'s jumps and the windows take
+/// turns until neither moves on.
+template <class Q, class Real, class SampleFn, class StartFn, class EndFn, class Passes, class InSpan,
+          class Clearance, class TolFn>
+[[gnu::always_inline]] inline Real scan_windows(const Q& q, SampleFn sample, StartFn window_start, EndFn window_end,
+                                                Passes passes, InSpan in_span, Clearance clearance, TolFn tolerance,
+                                                const Real& tau_end) {
+  Real sampled_until = -1;
+  auto earliest = [&](const Real& tau) {
+    Real t = first_window(tau, tau_end, window_start, window_end, passes, sampled_until);
+    if constexpr (!std::is_same_v<Clearance, NotCreeping>) {
+      for (;;) {  // jumps and windows in turn, until neither moves on
+        const Real next = creep(q, t, tau_end, clearance, tolerance);
+        if (next == t || next == never) return next;
+        t = first_window(next, tau_end, window_start, window_end, passes, sampled_until);
+      }
+    }
+    return t;
+  };
+  return first_outward_crossing<!std::is_same_v<Clearance, NotCreeping>>(sample, earliest, in_span, tolerance, tau_end);
+}
+
 /// First τ ≤ tau_end at which the driven flight `q` crosses the line (2-D) or plane (3-D)
 /// through `a` with outward unit normal `n` outward, at a point where `in_span`; +∞ if none.
 /// f = n·(x − a) lies within B = |n·F|/(mω²) of its guiding part g_off + nu τ, which must
@@ -303,19 +326,7 @@ Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& s
     const Real margin = B + tolerance(start), guide = g_off + nu * start;
     return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
   };
-  Real sampled_until = -1;
-  auto earliest = [&](const Real& tau) {
-    Real t = first_window(tau, tau_end, window_start, window_end, passes, sampled_until);
-    if constexpr (!std::is_same_v<Clearance, NotCreeping>) {
-      for (;;) {  // jumps and windows in turn, until neither moves on
-        const Real next = creep(q, t, tau_end, clearance, tolerance);
-        if (next == t || next == never) return next;
-        t = first_window(next, tau_end, window_start, window_end, passes, sampled_until);
-      }
-    }
-    return t;
-  };
-  return first_outward_crossing<!std::is_same_v<Clearance, NotCreeping>>(sample, earliest, in_span, tolerance, tau_end);
+  return scan_windows(q, sample, window_start, window_end, passes, in_span, clearance, tolerance, tau_end);
 }
 
 /// The same through the circle (2-D) or sphere (3-D) of centre c and radius r, the region
@@ -353,19 +364,7 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
     return min({reach_radius(start, g, q.u, Real(r + 2 * margin), true),
                 reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
   };
-  Real sampled_until = -1;
-  auto earliest = [&](const Real& tau) {
-    Real t = first_window(tau, tau_end, window_start, window_end, passes, sampled_until);
-    if constexpr (!std::is_same_v<Clearance, NotCreeping>) {
-      for (;;) {  // jumps and windows in turn, until neither moves on
-        const Real next = creep(q, t, tau_end, clearance, tolerance);
-        if (next == t || next == never) return next;
-        t = first_window(next, tau_end, window_start, window_end, passes, sampled_until);
-      }
-    }
-    return t;
-  };
-  return first_outward_crossing<!std::is_same_v<Clearance, NotCreeping>>(sample, earliest, in_span, tolerance, tau_end);
+  return scan_windows(q, sample, window_start, window_end, passes, in_span, clearance, tolerance, tau_end);
 }
 
 }  // namespace billiards::dynamics::scan
