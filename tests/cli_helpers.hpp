@@ -1,12 +1,17 @@
 // Running the `billiard` program from tests.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <array>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+
 #include <sys/wait.h>
 
 struct CommandResult {
@@ -47,4 +52,14 @@ inline std::filesystem::path scratch(const std::string& name) {
 
 inline void write_file(const std::filesystem::path& p, const std::string& text) {
   std::ofstream(p) << text;
+}
+
+inline nlohmann::json read_json(const std::filesystem::path& p) { return nlohmann::json::parse(read_file(p)); }
+
+/// energies.npy as doubles, row after row (its header is padded to 128 bytes).
+inline std::vector<double> read_npy(const std::filesystem::path& p) {
+  const std::string bytes = read_file(p);
+  std::vector<double> x((bytes.size() - 128) / sizeof(double));
+  std::memcpy(x.data(), bytes.data() + 128, x.size() * sizeof(double));
+  return x;
 }

@@ -15,16 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_file(p)); }
-
-/// energies.npy as rows of doubles (its header is padded to 128 bytes).
-std::vector<double> read_npy(const fs::path& p) {
-  const std::string bytes = read_file(p);
-  std::vector<double> x((bytes.size() - 128) / sizeof(double));
-  std::memcpy(x.data(), bytes.data() + 128, x.size() * sizeof(double));
-  return x;
-}
-
 const nlohmann::json& at_time(const nlohmann::json& comparison, double t) {
   for (const auto& f : comparison["times"])
     if (f["t"].get<double>() == t) return f;

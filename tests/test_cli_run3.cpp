@@ -18,16 +18,6 @@ namespace {
 
 const double pi = 3.14159265358979323846;
 
-nlohmann::json read_json(const fs::path& p) { return nlohmann::json::parse(read_file(p)); }
-
-/// energies.npy as doubles (its header is padded to 128 bytes).
-std::vector<double> read_npy(const fs::path& p) {
-  const std::string bytes = read_file(p);
-  std::vector<double> x((bytes.size() - 128) / sizeof(double));
-  std::memcpy(x.data(), bytes.data() + 128, x.size() * sizeof(double));
-  return x;
-}
-
 /// Writes a scene into the scenes folder (so that its shape path is ../shapes/...), runs
 /// `billiard COMMAND scene ARGS`, removes the scene.
 CommandResult with_scene(const std::string& name, const std::string& yaml, const std::string& command,
