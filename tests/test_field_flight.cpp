@@ -251,6 +251,24 @@ TEST_CASE("harmonic bowl in the circle: collision times equal the closed form, E
   }
 }
 
+TEST_CASE("harmonic bowl in the circle from its centre: the closed-form exit time (no 0/0 at the centre)") {
+  // From x0 = 0 the flight is x(t) = (v0/Ω) sin Ωt along v0, which reaches the unit circle at
+  // sin Ωt = Ω/|v0|.  At the centre the arc's f' = p·v/|p| is 0/0 unless guarded.
+  const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/circle.yaml");
+  const dynamics::Table table(shape.region);
+  const double k = 0.4, Omega = std::sqrt(k);
+  const FieldFlight flight(Force{}, harmonic(k), 1.0, table, 1e-11);
+  for (const Vec2 v0 : {Vec2(1, 0), Vec2(0.6, -0.8), Vec2(-3, 4)}) {
+    dynamics::State free;
+    free.x = Vec2(0, 0);
+    free.v = v0;
+    const auto hit = dynamics::collision(table, flight, flight.start(free), 100.0);
+    REQUIRE(hit.found());
+    CHECK(std::abs(hit.t - std::asin(Omega / v0.norm()) / Omega) < 1e-8);
+    CHECK((hit.point - v0.normalized()).norm() < 1e-8);
+  }
+}
+
 TEST_CASE("weak harmonic bowl in the stadium, F = 0: energy conserved to the integrator's tolerance") {
   const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/stadium.yaml");
   const dynamics::Table table(shape.region);

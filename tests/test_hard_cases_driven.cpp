@@ -115,6 +115,20 @@ TEST_CASE("from rest at drive phase 0: the particle oscillates along F; its hit 
   }
 }
 
+TEST_CASE("from rest at the circle's centre, the oscillation wider than the circle: the closed-form hit") {
+  // At the centre the arc's f' = p·v/|p| is 0/0 and |p|² underflows below 1e-154: the scan
+  // must still move off.  x(t) = δ (1 − cos ωt) F̂ meets the unit circle at ωt = 2 asin √(1/2δ).
+  const dynamics::Table table(hard::shape("circle", {}));
+  for (const double delta : {0.75, 3.0}) {
+    const double omega = 2 * geometry::pi;
+    const dynamics::PeriodicDriveFlight flight{delta * omega * omega * Vec2(0.6, 0.8), omega, 0};
+    const auto hit = dynamics::collision(table, flight, flight.start(state_at(Vec2::Zero())));
+    REQUIRE(hit.found());
+    CHECK(std::abs(hit.t - 2 * std::asin(std::sqrt(1 / (2 * delta))) / omega) < 1e-12);
+    CHECK((hit.point - Vec2(0.6, 0.8)).norm() < 1e-12);
+  }
+}
+
 namespace {
 
 /// Every wall's exit time of a static-force flight searched with no horizon (each search must

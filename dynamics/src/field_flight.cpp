@@ -196,12 +196,15 @@ class WallScan {
     if constexpr (std::is_same_v<Wall, SegmentWall>) {
       return {w_.normal.dot(x - w_.a), w_.normal.dot(v), A, never, x};
     } else {
-      // As for the static force: over a step h ≤ ρ/(2(V + A)), |v| ≤ V + A h and |p| ≥ ρ/2.
       const double sign = w_.focusing ? 1 : -1;
       const Vec2 p = x - w_.center;
-      const double rho = p.norm(), V = v.norm();
+      const double rho = p.norm(), V = v.norm(), f = sign * (rho - w_.radius);
+      // Nearer the centre than the wall: the Lipschitz bound |f'| ≤ |v| (f'' is unbounded
+      // there, and p̂·v is 0/0 at the centre), as in the closed-form flights' scan.
+      if (rho < w_.radius / 2) return {f, f < 0 ? V : -V, A, never, x};
+      // As for the static force: over a step h ≤ ρ/(2(V + A)), |v| ≤ V + A h and |p| ≥ ρ/2.
       const double h = rho / (2 * (V + A) + 1e-300), Vmax = V + A * h;
-      return {sign * (rho - w_.radius), sign * p.dot(v) / rho, 2 * Vmax * Vmax / std::max(rho, 1e-300) + A, h, x};
+      return {f, sign * p.dot(v) / rho, 2 * Vmax * Vmax / rho + A, h, x};
     }
   }
 

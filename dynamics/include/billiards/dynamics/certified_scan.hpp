@@ -343,12 +343,17 @@ Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focu
   auto sample = [&](const Real& tau) {
     const auto [x, v] = q.at(tau);
     const V p = x - c;
-    const Real rho = p.norm(), floored = max(rho, Real(1e-300));
-    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.  (At the
-    // centre itself p̂·v was 0/0 and the scan never ended; the floored ρ gives 0, and steps of
-    // ρ/2V that grow 1.5× each.)
-    const Real M = 2 * Vb * Vb / floored + A;
-    return Sample<Real, V>{sign * (rho - r), sign * p.dot(v) / floored, M, rho / (2 * Vb), x};
+    const Real rho = p.norm(), f = sign * (rho - r);
+    if (rho < r / 2) {
+      // Nearer the centre than the wall, f'' is unbounded (at the centre p̂·v is 0/0), but
+      // |f'| ≤ |v|: the Lipschitz bound |f(τ + s) − f(τ)| ≤ |v| s + A s²/2, as a sample moving
+      // towards zero at |v| with M = A, steps through safely, ~|f|/|v| at a time.
+      const Real speed = v.norm();
+      return Sample<Real, V>{f, f < 0 ? speed : Real(-speed), A, never, x};
+    }
+    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
+    const Real M = 2 * Vb * Vb / rho + A;
+    return Sample<Real, V>{f, sign * p.dot(v) / rho, M, rho / (2 * Vb), x};
   };
   // Before the start of a window the guide is farther than the margin from the sphere, on f's side.
   auto window_start = [&](const Real& tau) {
