@@ -23,6 +23,14 @@ inline geometry::Region2 shape(const std::string& name, const billiards::Overrid
   return geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml", set).region;
 }
 
+/// A free state at x with velocity v, at t = 0.
+inline dynamics::State state_at(const Vec2& x, const Vec2& v = Vec2::Zero()) {
+  dynamics::State s;
+  s.x = x;
+  s.v = v;
+  return s;
+}
+
 /// How far p lies outside the closed region (0 inside), by the table's independent
 /// crossing-number test without its tolerance (Table::contains allows 1e-9 of the size).
 inline double beyond(const dynamics::Table& table, const Vec2& p) {

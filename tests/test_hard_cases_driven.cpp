@@ -25,12 +25,7 @@ dynamics::BasicPeriodicDriveFlight<Real> drive(double omega_over_pi, double scal
   return {dynamics::Vec2T<Real>(a, a), Real(omega_over_pi) * boost::math::constants::pi<Real>(), Real(phase)};
 }
 
-dynamics::State state_at(const Vec2& x, const Vec2& v = Vec2::Zero()) {
-  dynamics::State s;
-  s.x = x;
-  s.v = v;
-  return s;
-}
+using hard::state_at;
 
 }  // namespace
 

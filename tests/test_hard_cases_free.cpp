@@ -17,13 +17,6 @@ namespace {
 const double pi = geometry::pi;
 const double eps = std::numeric_limits<double>::epsilon();
 
-dynamics::State start(const Vec2& x, const Vec2& v) {
-  dynamics::State s;
-  s.x = x;
-  s.v = v;
-  return s;
-}
-
 }  // namespace
 
 TEST_CASE("grazing incidence on a focusing arc: whispering-gallery orbits of the circle") {
@@ -33,7 +26,7 @@ TEST_CASE("grazing incidence on a focusing arc: whispering-gallery orbits of the
     for (const double theta : {1e-6, 1e-9, 1e-12, 1e-15}) {
       INFO("start at polar angle " << phi << ", grazing angle " << theta);
       // On the wall, moving in at `theta` from the counter-clockwise tangent.
-      const dynamics::State s = start(Vec2(std::cos(phi), std::sin(phi)), Vec2(-std::sin(phi + theta), std::cos(phi + theta)));
+      const dynamics::State s = hard::state_at(Vec2(std::cos(phi), std::sin(phi)), Vec2(-std::sin(phi + theta), std::cos(phi + theta)));
       const auto w = hard::walk(table, dynamics::FreeFlight{}, s, 100000);
       CHECK_FALSE(w.escaped);
       CHECK(w.zero_flights == 0);           // no phantom collision at the start of a flight
@@ -61,7 +54,7 @@ TEST_CASE("grazing incidence on a segment, and into a corner, at angles 1e-6 ...
     for (const double land : {0.75, 1 - 4 * eps, 1.0}) {  // where the floor is met: mid-wall, 4 ulps from the corner, on it
       INFO("grazing angle " << theta << ", floor met at x = " << land);
       const Vec2 v(std::cos(theta), -std::sin(theta));
-      const dynamics::State s = start(Vec2(land - 0.5, 0.5 * std::tan(theta)), v);
+      const dynamics::State s = hard::state_at(Vec2(land - 0.5, 0.5 * std::tan(theta)), v);
       const auto w = hard::walk(table, dynamics::FreeFlight{}, s, 2000);
       CHECK_FALSE(w.escaped);
       CHECK(w.worst_beyond <= 2 * eps);
@@ -80,7 +73,7 @@ TEST_CASE("near-tangent hits on the Sinai disk: hit or miss as in MPFR, the hit 
       // Aimed along +x at impact parameter r (1 + side 10^-k) from the disk's centre.
       const double y = 0.25 * (1 + side * std::pow(10.0, -k));
       INFO("impact parameter 0.25 (1 + " << side << " 1e-" << k << ") = " << y);
-      const dynamics::State s = start(Vec2(-0.45, y), Vec2(1, 0));
+      const dynamics::State s = hard::state_at(Vec2(-0.45, y), Vec2(1, 0));
       const auto w = hard::walk(table, dynamics::FreeFlight{}, s, 50);
       CHECK_FALSE(w.escaped);
       CHECK(w.worst_beyond <= 2 * eps);
@@ -112,7 +105,7 @@ TEST_CASE("hits within a few ulps of every joint and corner of the bundled table
         for (const int ulps : {-3, 0, 3}) {
           // Shift the start across the ray by a few ulps of the joint's coordinates.
           const double h = ulps * eps * std::max(1.0, joint.lpNorm<Eigen::Infinity>());
-          const dynamics::State s = start(x0 + h * Vec2(-v.y(), v.x()), v);
+          const dynamics::State s = hard::state_at(x0 + h * Vec2(-v.y(), v.x()), v);
           const auto ref = hard::reference_hits(region, dynamics::BasicFreeFlight<Reference>{}, s, 40);
           if (ref.empty() || (ref[0].point - joint).norm() > 1e-12) continue;  // something in the way
           INFO(name << ": joint " << joint.transpose() << ", direction " << angle << ", offset " << ulps << " ulps");
@@ -147,7 +140,7 @@ TEST_CASE("whispering-gallery orbits in the mushroom cap and bouncing-ball orbit
     for (const double theta : {1e-3, 1e-6}) {
       INFO("grazing angle " << theta);
       const double phi = 0.5;
-      const dynamics::State s = start(Vec2(std::cos(phi), std::sin(phi)), Vec2(-std::sin(phi + theta), std::cos(phi + theta)));
+      const dynamics::State s = hard::state_at(Vec2(std::cos(phi), std::sin(phi)), Vec2(-std::sin(phi + theta), std::cos(phi + theta)));
       const auto w = hard::walk(table, dynamics::FreeFlight{}, s, 100000);
       CHECK_FALSE(w.escaped);
       CHECK(w.worst_beyond <= 2 * eps);
@@ -165,14 +158,14 @@ TEST_CASE("whispering-gallery orbits in the mushroom cap and bouncing-ball orbit
     const auto region = hard::shape("stadium");
     const dynamics::Table table(region);
     // The bouncing ball orbit itself: exactly vertical, it stays period 2 for ever.
-    const auto ball = hard::walk(table, dynamics::FreeFlight{}, start(Vec2(0.3, 0), Vec2(0, 1)), 100000);
+    const auto ball = hard::walk(table, dynamics::FreeFlight{}, hard::state_at(Vec2(0.3, 0), Vec2(0, 1)), 100000);
     CHECK_FALSE(ball.escaped);
     bool period2 = true;
     for (const auto& h : ball.hits) period2 = period2 && h.point.x() == 0.3 && std::abs(h.point.y()) == 1;
     CHECK(period2);
     // Nearly bouncing: drifts to a cap after ~1/tilt bounces.
     for (const double tilt : {1e-4, 1e-7}) {
-      const dynamics::State s = start(Vec2(0.3, 0), Vec2(tilt, 1));
+      const dynamics::State s = hard::state_at(Vec2(0.3, 0), Vec2(tilt, 1));
       const auto w = hard::walk(table, dynamics::FreeFlight{}, s, 3000);
       CHECK_FALSE(w.escaped);
       CHECK(w.worst_beyond <= 2 * eps);
