@@ -3,7 +3,10 @@
 #include "billiards/dynamics/certified_scan.hpp"
 #include "billiards/dynamics/precision.hpp"
 
+#include <boost/container/small_vector.hpp>
+
 #include <algorithm>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <tuple>
@@ -119,6 +122,79 @@ Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, c
 }
 
 }  // namespace
+
+namespace {
+
+/// fn(wall, gap): wall number `wall` of the table and its gap seen from the flight q.
+template <class Real, class Q, class Fn>
+void with_wall(const BasicTable<Real>& table, const Q& q, int wall, Fn&& fn) {
+  const std::size_t ns = table.segments().size();
+  if (std::size_t(wall) < ns) {
+    const auto& w = table.segments()[wall];
+    fn(w, scan::PlaneGap<Q, Vec2T<Real>>(q, w.normal, w.a, w.slack));
+  } else {
+    const auto& w = table.arcs()[wall - ns];
+    fn(w, scan::SphereGap<Q, Vec2T<Real>>(q, w.center, w.radius, w.focusing, w.slack));
+  }
+}
+
+}  // namespace
+
+template <class Flight>
+auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_end) const -> BasicHit<Real> {
+  const auto& q = quiver;
+  const int walls = int(table.wall_count());
+  BasicHit<Real> best;
+  best.t = t_end;
+  if (q.creeping) {  // (creep's jumps are interleaved with the windows of one wall at a time)
+    for (int w = 0; w < walls; ++w) detail::try_wall(table, *this, w, best);
+    return best;
+  }
+  // The next window of each wall, earliest first.  `below`: the guide entered it from f's
+  // negative side, so f < 0 at its start.
+  struct Next {
+    Real start;
+    int wall;
+    bool below;
+  };
+  boost::container::small_vector<Next, 16> queue;
+  auto push = [&](const Real& start, int wall, bool below) {
+    auto at = queue.end();
+    while (at != queue.begin() && std::prev(at)->start > start) --at;
+    queue.insert(at, Next{start, wall, below});
+  };
+  Real tau_best = t_end - q.s.t;
+  for (int w = 0; w < walls; ++w) {
+    with_wall(table, q, w, [&](const auto& wall, const auto& gap) {
+      if (!may_come_near(q, wall, tau_best)) return;
+      const Real start = gap.window_start(Real(0));
+      if (start <= tau_best) push(start, w, start > 0 && gap.guide_below(Real(0)));
+    });
+  }
+  for (std::size_t k = 0; k < queue.size() && queue[k].start <= tau_best; ++k) {
+    const Next next = queue[k];
+    with_wall(table, q, next.wall, [&](const auto& wall, const auto& gap) {
+      Real end = gap.window_end(next.start, tau_best);
+      const bool open = !(end > next.start) || end == never;  // (a guide parallel to a line)
+      if (open) end = tau_best;
+      // A window in which the particle cannot reach the wall's span is passed unsampled.
+      if (open || may_meet_span(wall, q.guide(next.start), q.guide(end), q.delta)) {
+        auto in_span = [&wall](const Vec2T<Real>& x) { return wall.within_span(x); };
+        const Real tau = scan::crossing_in_window(gap, in_span, next.start, end, next.below);
+        if (tau < tau_best) {  // (the wall's later windows open after it)
+          tau_best = tau;
+          best.wall = next.wall;
+          return;
+        }
+      }
+      if (end >= tau_best) return;
+      const Real start = gap.window_start(end);
+      if (start <= tau_best) push(start, next.wall, start > end && gap.guide_below(end));
+    });
+  }
+  if (best.found()) best.t = q.s.t + tau_best;
+  return best;
+}
 
 template <class Flight>
 auto DrivenScan<Flight>::exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const -> Real {

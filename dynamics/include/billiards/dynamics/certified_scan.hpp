@@ -35,6 +35,16 @@ struct Sample {
   V x;         // position
 };
 
+/// The collision time returned for a sample p at τ within the rounding band (|f| ≤ tol, f' > 0):
+/// one Newton step polishes the root from |f| ≤ tol (rounding of the walls, ~1e-13) to the
+/// rounding of f itself, so the collision time does not depend on where the search happened to
+/// enter the band; the step stays inside that band.
+template <class Real, class S>
+Real polished_root(const Real& tau, const S& p, const Real& tol) {
+  using std::max;
+  return max(Real(0), Real(tau - std::clamp(Real(p.f / p.df), Real(-tol / p.df), Real(tol / p.df))));
+}
+
 /// First τ in [0, tau_end] at which f crosses zero upward at a point in the wall's span.
 /// `sample(τ)` evaluates f; `earliest(τ)` returns a time ≥ τ before which no collision can
 /// occur (from the guiding line and the bounded oscillation; τ itself when it cannot tell), or
@@ -71,11 +81,7 @@ template <bool local_band = false, class Real, class SampleFn, class EarliestFn,
     Real s;
     if (abs(p.f) <= tol) {
       // At the wall to rounding: an outward crossing in the span is the collision.
-      // One Newton step polishes the root from |f| ≤ tol (rounding of the walls, ~1e-13) to
-      // the rounding of f itself, so the collision time does not depend on where the scan
-      // happened to enter the tolerance band; the step stays inside that band.
-      if (p.df > 0 && in_span(p.x))
-        return max(Real(0), Real(tau - std::clamp(Real(p.f / p.df), Real(-tol / p.df), Real(tol / p.df))));
+      if (p.df > 0 && in_span(p.x)) return polished_root(tau, p, tol);
       // Otherwise no collision here.  Leaving the wall (f' < 0, as from the wall just bounced
       // off), f decreases until f' ≥ 0 and stays below f + tol + f' s + M s²/2, whose larger
       // root is the earliest return to zero.  A touch or a crossing outside the span is passed
@@ -270,14 +276,188 @@ struct Quiver {
   }
 };
 
-/// The scan of a driven flight (`first_outward_crossing`) whose `earliest` passes the windows
-/// it can (`first_window`) and, for a creeping flight, lets `creep`'s jumps and the windows take
-/// turns until neither moves on.
-template <class Q, class Real, class SampleFn, class StartFn, class EndFn, class Passes, class InSpan,
-          class Clearance, class TolFn>
-[[gnu::always_inline]] inline Real scan_windows(const Q& q, SampleFn sample, StartFn window_start, EndFn window_end,
-                                                Passes passes, InSpan in_span, Clearance clearance, TolFn tolerance,
-                                                const Real& tau_end) {
+/// How far beyond the line (2-D) or plane (3-D) through `a` with outward unit normal `n` the
+/// driven flight `q` is: f = n·(x − a), which lies within B = |n·F|/(mω²) of its guiding part
+/// g_off + nu τ.  A gap gives a scan of one wall everything it needs: f and its rounding, the
+/// windows (the only times at which f can vanish) and a bound on the sign of f' in a window.
+template <class Q, class V>
+struct PlaneGap {
+  using Real = typename Q::Real;
+  const Q& q;
+  V n, a;
+  Real slack, n_a, B, nu, g_off, rate;
+
+  PlaneGap(const Q& q_, const V& n_, const V& a_, const Real& slack_) : q(q_), n(n_), a(a_), slack(slack_) {
+    using std::abs;
+    n_a = abs(n.dot(q.flight.accel));
+    B = n_a / (q.flight.omega * q.flight.omega);
+    nu = n.dot(q.u);
+    g_off = n.dot(q.g0 - a);
+    rate = abs(nu) + n_a / q.flight.omega;  // |f'| ≤ rate: the band covers f's change over the scan's step floor
+  }
+  /// The rounding level of f at τ.
+  Real tolerance(const Real& tau) const {
+    using std::abs;
+    return slack + 8 * eps<Real> * (abs(g_off) + rate * tau + B);
+  }
+  Sample<Real, V> sample(const Real& tau) const {
+    const auto [x, v] = q.at(tau);
+    return {n.dot(x - a), n.dot(v), n_a, never, x};
+  }
+  /// Is the guide on f's negative side at τ?
+  bool guide_below(const Real& tau) const { return g_off + nu * tau < 0; }
+  /// First time ≥ τ at which the guide comes within the margin (B and rounding) of the wall, or
+  /// +∞: before it f cannot vanish.
+  Real window_start(const Real& tau) const {
+    const Real margin = B + tolerance(tau), guide = g_off + nu * tau;
+    return guide < 0 ? reach_linear(tau, guide, nu, Real(-margin)) : reach_linear(tau, Real(-guide), Real(-nu), Real(-margin));
+  }
+  /// When the guide, from the window's start, is twice the margin away (so that the scan leaves
+  /// the window for good), or tau_end.
+  Real window_end(const Real& start, const Real& tau_end) const {
+    using std::min;
+    if (nu == 0) return start;
+    const Real margin = B + tolerance(start), guide = g_off + nu * start;
+    return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
+  }
+  /// +1 when f' > 0 throughout the window (f then crosses zero there at most once, upward), −1
+  /// when f' < 0 (no collision), 0 when the bounds cannot tell: f' = nu + n·(F/mω) sin θ.
+  int slope_sign(const Real&, const Real&) const {
+    const Real wobble = n_a / q.flight.omega * (1 + 16 * eps<Real>) + 8 * eps<Real> * q.speed;
+    return nu > wobble ? 1 : nu < -wobble ? -1 : 0;
+  }
+};
+
+/// The same for the circle (2-D) or sphere (3-D) of centre c and radius r, the region inside it
+/// when `focusing`: f = ±(|x − c| − r), where |x − c| lies within δ of the guide's distance
+/// from c.
+template <class Q, class V>
+struct SphereGap {
+  using Real = typename Q::Real;
+  const Q& q;
+  V c;
+  Real r, sign, slack, scale;
+
+  SphereGap(const Q& q_, const V& c_, const Real& r_, bool focusing, const Real& slack_)
+      : q(q_), c(c_), r(r_), sign(focusing ? 1 : -1), slack(slack_), scale((q.s.x - c).norm() + r) {}
+  Real tolerance(const Real& tau) const { return slack + 8 * eps<Real> * (scale + q.rounding_rate * tau + q.delta); }
+  Sample<Real, V> sample(const Real& tau) const {
+    const auto [x, v] = q.at(tau);
+    const V p = x - c;
+    const Real rho = p.norm(), f = sign * (rho - r);
+    if (rho < r / 2) {
+      // Nearer the centre than the wall, f'' is unbounded (at the centre p̂·v is 0/0), but
+      // |f'| ≤ |v|: the Lipschitz bound |f(τ + s) − f(τ)| ≤ |v| s + A s²/2, as a sample moving
+      // towards zero at |v| with M = A, steps through safely, ~|f|/|v| at a time.
+      const Real speed = v.norm();
+      return {f, f < 0 ? speed : Real(-speed), q.accel_norm, never, x};
+    }
+    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
+    const Real Vb = q.speed_bound;
+    return {f, sign * p.dot(v) / rho, 2 * Vb * Vb / rho + q.accel_norm, rho / (2 * Vb), x};
+  }
+  bool guide_below(const Real& tau) const { return sign * ((q.guide(tau) - c).squaredNorm() - r * r) < 0; }
+  Real window_start(const Real& tau) const {
+    using std::max;
+    const V g = q.guide(tau) - c;
+    const Real margin = q.delta + tolerance(tau);
+    return g.squaredNorm() < r * r ? reach_radius(tau, g, q.u, max(Real(0), Real(r - margin)), true)
+                                   : reach_radius(tau, g, q.u, Real(r + margin), false);
+  }
+  Real window_end(const Real& start, const Real& tau_end) const {
+    using std::max;
+    using std::min;
+    const V g = q.guide(start) - c;
+    const Real margin = q.delta + tolerance(start);
+    return min({reach_radius(start, g, q.u, Real(r + 2 * margin), true),
+                reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
+  }
+  /// f' = ±p̂·v.  In the window the guide q stays within 2 margins m of the sphere, p = q + o
+  /// with |o| ≤ δ, and v = u + w with |w| ≤ |F|/(mω); so |p̂·v − q̂·u| ≤ |F|/(mω) + 2δ V/|p|,
+  /// and q̂·u = (q·u)/|q|, whose numerator grows linearly in τ, is bounded by its values at the
+  /// window's ends.
+  int slope_sign(const Real& start, const Real& end) const {
+    using std::isfinite;
+    const Real m2 = 2 * (q.delta + tolerance(end)), inner = r - m2, outer = r + m2;
+    if (!isfinite(end) || !(inner - q.delta > 0)) return 0;
+    const Real qu0 = (q.g0 - c).dot(q.u), uu = q.u.squaredNorm();
+    const Real qs = qu0 + uu * start, qe = qu0 + uu * end;
+    const Real lo = qs >= 0 ? qs / outer : qs / inner, hi = qe >= 0 ? qe / inner : qe / outer;
+    const Real wobble = q.accel_norm / q.flight.omega + 2 * q.delta * q.speed_bound / (inner - q.delta) +
+                        16 * eps<Real> * (q.speed_bound + (q.g0 - c).norm() * uu / inner);
+    const Real f_lo = sign > 0 ? lo : Real(-hi), f_hi = sign > 0 ? hi : Real(-lo);
+    return f_lo > wobble ? 1 : f_hi < -wobble ? -1 : 0;
+  }
+};
+
+/// A root search that could not decide (see `monotone_crossing`).
+inline constexpr double undecided = -1;
+
+/// The collision in a window [start, end] where f' > 0 throughout (slope_sign = +1): f crosses
+/// zero there at most once, so Newton's iteration kept inside a bracket finds it without any
+/// risk of passing an earlier root, in ~3 evaluations where the certified scan takes ~4.
+/// `below`: f(start) < 0 is known (the guide entered the window from f's negative side) and
+/// start need not be sampled.  Returns the root, +∞ when f does not cross zero in the window or
+/// crosses outside the wall's span, or `undecided` when the iteration stalls.
+template <class Gap, class InSpan, class Real>
+Real monotone_crossing(const Gap& g, InSpan in_span, const Real& start, const Real& end, bool below) {
+  using std::abs;
+  Real lo = start, hi = end;  // f(lo) < 0; f(hi) > 0 once `bracketed`
+  bool bracketed = false;
+  // The window runs from the guide at −m to the guide at +2m: it crosses about a third in.
+  Real tau = below ? Real(start + (end - start) / 3) : start;
+  for (int k = 0; k < 100; ++k) {
+    const auto p = g.sample(tau);
+    const Real tol = g.tolerance(tau);
+    if (abs(p.f) <= tol) {
+      if (!(p.df > 0)) return undecided;  // (f' > 0 was certified: only rounding could do this)
+      return in_span(p.x) ? polished_root(tau, p, tol) : Real(never);
+    }
+    if (p.f < 0) {
+      if (tau >= end) return never;  // still below at the end of the window
+      lo = tau;
+    } else {
+      if (tau == start) return never;  // above from the start, and rising
+      hi = tau;
+      bracketed = true;
+    }
+    Real next = p.df > 0 ? Real(tau - p.f / p.df) : lo;
+    if (!(next > lo && next < hi)) next = bracketed ? Real(lo + (hi - lo) / 2) : hi;  // hi = end until bracketed
+    if (next == tau) return undecided;
+    tau = next;
+  }
+  return undecided;
+}
+
+/// The first collision with one wall in its window [start, end]: +∞ when f' < 0 throughout,
+/// the monotone search when f' > 0 throughout, else the certified scan of the window.
+template <class Gap, class InSpan, class Real>
+Real crossing_in_window(const Gap& g, InSpan in_span, const Real& start, const Real& end, bool below) {
+  const int slope = g.slope_sign(start, end);
+  if (slope < 0) return never;
+  if (slope > 0) {
+    const Real tau = monotone_crossing(g, in_span, start, end, below);
+    if (tau != undecided) return tau;
+  }
+  auto sample = [&](const Real& tau) { return g.sample(tau); };
+  auto tolerance = [&](const Real& tau) { return g.tolerance(tau); };
+  auto earliest = [&](const Real& tau) { return tau < start ? start : tau; };
+  return first_outward_crossing(sample, earliest, in_span, tolerance, end);
+}
+
+/// The scan of a driven flight through one wall (`first_outward_crossing` of the gap g) whose
+/// `earliest` passes the windows it can (`first_window`) and, for a creeping flight, lets
+/// `creep`'s jumps and the windows take turns until neither moves on.  `passes(τ, end)` may
+/// declare a window [τ, end] free of collisions (the wall's span is out of reach) and
+/// `clearance(τ)` bounds the distance of the oscillation segment from the wall within its span
+/// from below (see `creep`), or is NotCreeping (see `with_creep`).  +∞ if no collision.
+template <class Q, class Gap, class Passes, class InSpan, class Clearance, class Real>
+[[gnu::always_inline]] inline Real scan_windows(const Q& q, const Gap& g, Passes passes, InSpan in_span,
+                                                Clearance clearance, const Real& tau_end) {
+  auto sample = [&](const Real& tau) { return g.sample(tau); };
+  auto tolerance = [&](const Real& tau) { return g.tolerance(tau); };
+  auto window_start = [&](const Real& tau) { return g.window_start(tau); };
+  auto window_end = [&](const Real& start) { return g.window_end(start, tau_end); };
   Real sampled_until = -1;
   auto earliest = [&](const Real& tau) {
     Real t = first_window(tau, tau_end, window_start, window_end, passes, sampled_until);
@@ -295,81 +475,18 @@ template <class Q, class Real, class SampleFn, class StartFn, class EndFn, class
 
 /// First τ ≤ tau_end at which the driven flight `q` crosses the line (2-D) or plane (3-D)
 /// through `a` with outward unit normal `n` outward, at a point where `in_span`; +∞ if none.
-/// f = n·(x − a) lies within B = |n·F|/(mω²) of its guiding part g_off + nu τ, which must
-/// first come within B (and rounding) of zero.  While it is that close — the window, widened
-/// to twice the margin so that the scan leaves it for good — `passes(τ, end)` may declare that
-/// no point of the window can be a collision (the wall's span is out of reach), and the whole
-/// window is passed.  `clearance(τ)` bounds the distance of the oscillation segment from the
-/// wall within its span from below (see `creep`), or is NotCreeping (see `with_creep`).
 template <class Q, class V, class Real, class Passes, class InSpan, class Clearance>
 Real driven_exit_through_plane(const Q& q, const V& n, const V& a, const Real& slack, const Real& tau_end,
                                Passes passes, InSpan in_span, Clearance clearance) {
-  using std::abs;
-  const Real n_a = abs(n.dot(q.flight.accel));
-  const Real B = n_a / (q.flight.omega * q.flight.omega);
-  const Real nu = n.dot(q.u), g_off = n.dot(q.g0 - a);
-  // (|f'| ≤ |nu| + n_a/ω: the band covers f's change over the scan's step floor.)
-  const Real rate = abs(nu) + n_a / q.flight.omega;
-  auto tolerance = [=](const Real& tau) { return Real(slack + 8 * eps<Real> * (abs(g_off) + rate * tau + B)); };
-  auto sample = [&](const Real& tau) {
-    const auto [x, v] = q.at(tau);
-    return Sample<Real, V>{n.dot(x - a), n.dot(v), n_a, never, x};
-  };
-  // Before the start of a window the guide is farther than the margin from the wall, on f's side.
-  auto window_start = [&](const Real& tau) {
-    const Real margin = B + tolerance(tau), guide = g_off + nu * tau;
-    return guide < 0 ? reach_linear(tau, guide, nu, Real(-margin)) : reach_linear(tau, Real(-guide), Real(-nu), Real(-margin));
-  };
-  auto window_end = [&](const Real& start) {
-    using std::min;
-    if (nu == 0) return start;
-    const Real margin = B + tolerance(start), guide = g_off + nu * start;
-    return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
-  };
-  return scan_windows(q, sample, window_start, window_end, passes, in_span, clearance, tolerance, tau_end);
+  return scan_windows(q, PlaneGap<Q, V>(q, n, a, slack), passes, in_span, clearance, tau_end);
 }
 
 /// The same through the circle (2-D) or sphere (3-D) of centre c and radius r, the region
-/// inside it when `focusing`: f = ±(|x − c| − r), |x − c| within δ of the guiding line's
-/// distance to c.
+/// inside it when `focusing`.
 template <class Q, class V, class Real, class Passes, class InSpan, class Clearance>
 Real driven_exit_through_sphere(const Q& q, const V& c, const Real& r, bool focusing, const Real& slack,
                                 const Real& tau_end, Passes passes, InSpan in_span, Clearance clearance) {
-  using std::max;
-  const Real sign = focusing ? 1 : -1;
-  const Real Vb = q.speed_bound, A = q.accel_norm, delta = q.delta, rate = q.rounding_rate;
-  const Real scale = (q.s.x - c).norm() + r;
-  auto tolerance = [=](const Real& tau) { return Real(slack + 8 * eps<Real> * (scale + rate * tau + delta)); };
-  auto sample = [&](const Real& tau) {
-    const auto [x, v] = q.at(tau);
-    const V p = x - c;
-    const Real rho = p.norm(), f = sign * (rho - r);
-    if (rho < r / 2) {
-      // Nearer the centre than the wall, f'' is unbounded (at the centre p̂·v is 0/0), but
-      // |f'| ≤ |v|: the Lipschitz bound |f(τ + s) − f(τ)| ≤ |v| s + A s²/2, as a sample moving
-      // towards zero at |v| with M = A, steps through safely, ~|f|/|v| at a time.
-      const Real speed = v.norm();
-      return Sample<Real, V>{f, f < 0 ? speed : Real(-speed), A, never, x};
-    }
-    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
-    const Real M = 2 * Vb * Vb / rho + A;
-    return Sample<Real, V>{f, sign * p.dot(v) / rho, M, rho / (2 * Vb), x};
-  };
-  // Before the start of a window the guide is farther than the margin from the sphere, on f's side.
-  auto window_start = [&](const Real& tau) {
-    const V g = q.guide(tau) - c;
-    const Real margin = delta + tolerance(tau);
-    return g.squaredNorm() < r * r ? reach_radius(tau, g, q.u, max(Real(0), Real(r - margin)), true)
-                                   : reach_radius(tau, g, q.u, Real(r + margin), false);
-  };
-  auto window_end = [&](const Real& start) {
-    using std::min;
-    const V g = q.guide(start) - c;
-    const Real margin = delta + tolerance(start);
-    return min({reach_radius(start, g, q.u, Real(r + 2 * margin), true),
-                reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
-  };
-  return scan_windows(q, sample, window_start, window_end, passes, in_span, clearance, tolerance, tau_end);
+  return scan_windows(q, SphereGap<Q, V>(q, c, r, focusing, slack), passes, in_span, clearance, tau_end);
 }
 
 }  // namespace billiards::dynamics::scan

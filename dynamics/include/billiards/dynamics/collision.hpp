@@ -78,7 +78,10 @@ FlightHit<Flight> collision(const BasicTable<typename Flight::Scalar>& table, co
   if (!table.grid() || !std::is_same_v<Flight, FreeFlight>) {
     best.t = t_end;
     const auto scan = detail::scan_from(flight, s);
-    for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, scan, w, best);
+    if constexpr (requires { scan.first_hit(table, t_end); })
+      static_cast<BasicHit<typename Flight::Scalar>&>(best) = scan.first_hit(table, t_end);
+    else
+      for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, scan, w, best);
   }
   if (!best.found()) return best;
   best.state = flight.advance(s, best.t);

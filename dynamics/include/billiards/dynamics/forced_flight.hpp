@@ -50,6 +50,12 @@ struct DrivenScan {
   scan::Quiver<Flight, BasicDrivenState<Real>> quiver;
   Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const;
+  /// The first wall of the table the flight leaves through before t_end (the hit's t and
+  /// wall; wall −1 if none).  The walls' windows — the only stretches of the flight in which
+  /// they can be hit — are searched in the order in which they open, so a wall whose window
+  /// opens after the collision found is never sampled; in a window where the sign of f' is
+  /// certain, the root is found by a bracketed Newton iteration instead of the certified scan.
+  BasicHit<Real> first_hit(const BasicTable<Real>& table, const Real& t_end) const;
 };
 
 /// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0).
