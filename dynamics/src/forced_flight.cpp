@@ -6,7 +6,6 @@
 #include <boost/container/small_vector.hpp>
 
 #include <algorithm>
-#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <tuple>
@@ -81,7 +80,7 @@ template <class Real, class Q, class Wall>
 bool may_come_near(const Q& q, const Wall& w, const Real& tau_end) {
   if (tau_end == never) return true;
   const Vec2T<Real> g = q.g0 - w.bound_center;
-  const Real rounding = 16 * eps<Real> * (g.norm() + w.bound_radius + q.speed_bound * tau_end + q.delta);
+  const Real rounding = 16 * eps<Real> * (g.template lpNorm<1>() + w.bound_radius + q.speed_bound * tau_end + q.delta);
   const Real reach = w.bound_radius + 2 * (q.delta + w.slack + rounding);
   return scan::reach_radius(Real(0), g, q.u, reach, false) <= tau_end;
 }
@@ -150,46 +149,33 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
     for (int w = 0; w < walls; ++w) detail::try_wall(table, *this, w, best);
     return best;
   }
-  // The next window of each wall, earliest first.  `below`: the guide entered it from f's
-  // negative side, so f < 0 at its start.
-  struct Next {
-    Real start;
-    int wall;
-    bool below;
-  };
-  boost::container::small_vector<Next, 16> queue;
-  auto push = [&](const Real& start, int wall, bool below) {
-    auto at = queue.end();
-    while (at != queue.begin() && std::prev(at)->start > start) --at;
-    queue.insert(at, Next{start, wall, below});
-  };
+  // Every wall's windows until the horizon, earliest first.
   Real tau_best = t_end - q.s.t;
+  boost::container::small_vector<scan::Window<Real>, 16> windows;
   for (int w = 0; w < walls; ++w) {
-    with_wall(table, q, w, [&](const auto& wall, const auto& gap) {
-      if (!may_come_near(q, wall, tau_best)) return;
-      const Real start = gap.window_start(Real(0));
-      if (start <= tau_best) push(start, w, start > 0 && gap.guide_below(Real(0)));
+    with_wall(table, q, w, [&](const auto&, const auto& gap) {
+      scan::Window<Real> found[2];
+      for (int k = 0, n = gap.windows(tau_best, found); k < n; ++k) {
+        found[k].wall = w;
+        windows.push_back(found[k]);
+        for (std::size_t i = windows.size() - 1; i > 0 && windows[i - 1].start > windows[i].start; --i)
+          std::swap(windows[i - 1], windows[i]);
+      }
     });
   }
-  for (std::size_t k = 0; k < queue.size() && queue[k].start <= tau_best; ++k) {
-    const Next next = queue[k];
-    with_wall(table, q, next.wall, [&](const auto& wall, const auto& gap) {
-      Real end = gap.window_end(next.start, tau_best);
-      const bool open = !(end > next.start) || end == never;  // (a guide parallel to a line)
-      if (open) end = tau_best;
+  for (std::size_t k = 0; k < windows.size() && windows[k].start <= tau_best; ++k) {
+    with_wall(table, q, windows[k].wall, [&](const auto& wall, const auto& gap) {
+      auto window = windows[k];
+      using std::min;
+      window.end = min(window.end, tau_best);
       // A window in which the particle cannot reach the wall's span is passed unsampled.
-      if (open || may_meet_span(wall, q.guide(next.start), q.guide(end), q.delta)) {
-        auto in_span = [&wall](const Vec2T<Real>& x) { return wall.within_span(x); };
-        const Real tau = scan::crossing_in_window(gap, in_span, next.start, end, next.below);
-        if (tau < tau_best) {  // (the wall's later windows open after it)
-          tau_best = tau;
-          best.wall = next.wall;
-          return;
-        }
+      if (!may_meet_span(wall, q.guide(window.start), q.guide(window.end), q.delta)) return;
+      auto in_span = [&wall](const Vec2T<Real>& x) { return wall.within_span(x); };
+      const Real tau = scan::crossing_in_window(gap, in_span, window);
+      if (tau < tau_best) {
+        tau_best = tau;
+        best.wall = window.wall;
       }
-      if (end >= tau_best) return;
-      const Real start = gap.window_start(end);
-      if (start <= tau_best) push(start, next.wall, start > end && gap.guide_below(end));
     });
   }
   if (best.found()) best.t = q.s.t + tau_best;
