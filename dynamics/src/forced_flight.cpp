@@ -37,7 +37,8 @@ bool may_meet_span(const BasicArcWall<Real>& w, const Vec2T<Real>& p, const Vec2
   using std::min;
   if (w.full) return true;
   const Vec2T<Real> a = p - w.center, b = q - w.center;
-  const Real margin = w.radius * (w.slack + pad) + 16 * eps<Real> * w.radius * (a.norm() + b.norm());
+  // (|·|₁ ≥ |·| bounds the rounding of the cross products without a square root.)
+  const Real margin = w.radius * (w.slack + pad) + 16 * eps<Real> * w.radius * (a.template lpNorm<1>() + b.template lpNorm<1>());
   if (w.ccw_extent <= geometry::pi)
     return max(cross(w.from, a), cross(w.from, b)) >= -margin && max(cross(a, w.to), cross(b, w.to)) >= -margin;
   return !(min(cross(w.to, a), cross(w.to, b)) > margin && min(cross(a, w.from), cross(b, w.from)) > margin);

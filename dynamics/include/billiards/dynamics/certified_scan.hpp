@@ -287,11 +287,14 @@ struct Quiver {
   }
 };
 
-/// f and its first two derivatives at one time, and the position there.
+/// A function with the same sign and roots as f (and the same sign of slope), its first two
+/// derivatives at one time, the position there, and `tol`, the level below which |f| ≤ the
+/// rounding tolerance of f is certain.
 template <class Real, class V>
 struct Taylor {
   Real f, df, d2f;
   V x;
+  Real tol;
 };
 
 /// A stretch [start, end] of a driven flight in which its guide is within two margins (the
@@ -355,7 +358,7 @@ struct PlaneGap {
   }
   Taylor<Real, V> taylor(const Real& tau) const {
     const auto m = q.motion(tau);
-    return {n.dot(m.x - a), n.dot(m.v), n.dot(m.a), m.x};
+    return {n.dot(m.x - a), n.dot(m.v), n.dot(m.a), m.x, tolerance(tau)};
   }
   /// First time ≥ τ at which the guide comes within the margin (B and rounding) of the wall, or
   /// +∞: before it f cannot vanish.
@@ -419,12 +422,15 @@ struct SphereGap {
     const Real Vb = q.speed_bound;
     return {f, sign * p.dot(v) / rho, 2 * Vb * Vb / rho + q.accel_norm, rho / (2 * Vb), x};
   }
-  /// f'' = ±((|v|² − (p̂·v)²)/|p| + p̂·a).
+  /// ±(|p|² − r²), free of square roots and divisions (which lengthened each iteration of the
+  /// root search by a third): |p|² − r² = (|p| − r)(|p| + r), and |p| − r ≤ tol is certain when
+  /// ||p|² − r²| ≤ 2 tol (r − tol).
   Taylor<Real, V> taylor(const Real& tau) const {
     const auto m = q.motion(tau);
     const V p = m.x - c;
-    const Real rho = p.norm(), radial = p.dot(m.v) / rho;
-    return {sign * (rho - r), sign * radial, sign * ((m.v.squaredNorm() - radial * radial) / rho + p.dot(m.a) / rho), m.x};
+    const Real tol = tolerance(tau);
+    return {sign * (p.squaredNorm() - r * r), 2 * sign * p.dot(m.v), 2 * sign * (m.v.squaredNorm() + p.dot(m.a)), m.x,
+            2 * tol * (r - tol)};
   }
   Real window_start(const Real& tau) const {
     using std::max;
@@ -485,13 +491,16 @@ struct SphereGap {
     using std::isfinite;
     const Real m2 = 2 * w.margin, inner = r - m2, outer = r + m2;
     if (!isfinite(w.end) || !(inner - q.delta > 0)) return 0;
-    const Real qu0 = (q.g0 - c).dot(q.u), uu = q.uu;
-    const Real qs = qu0 + uu * w.start, qe = qu0 + uu * w.end;
-    const Real lo = qs >= 0 ? qs / outer : qs / inner, hi = qe >= 0 ? qe / inner : qe / outer;
-    const Real wobble = q.accel_norm / q.flight.omega + 2 * q.delta * q.speed_bound / (inner - q.delta) +
-                        16 * eps<Real> * (q.speed_bound + (q.g0 - c).norm() * uu / inner);
-    const Real f_lo = sign > 0 ? lo : Real(-hi), f_hi = sign > 0 ? hi : Real(-lo);
-    return f_lo > wobble ? 1 : f_hi < -wobble ? -1 : 0;
+    const V q0 = q.g0 - c;
+    const Real qu0 = q0.dot(q.u);
+    const Real qs = qu0 + q.uu * w.start, qe = qu0 + q.uu * w.end;
+    const Real wobble = q.accel_norm / q.flight.omega + 2 * q.delta * q.speed_bound / (inner - q.delta);
+    // q̂·u > wobble throughout (outward) when qs/|q| > wobble, as |q| ≤ outer; < −wobble
+    // (inward) likewise at the end; compared without dividing, with the rounding of q·u.
+    const Real threshold = wobble * outer + 16 * eps<Real> * (q0.template lpNorm<1>() * q.u.template lpNorm<1>() +
+                                                               q.uu * w.end + q.speed_bound * outer);
+    const bool outward = qs > threshold, inward = qe < -threshold;
+    return sign > 0 ? (outward ? 1 : inward ? -1 : 0) : (inward ? 1 : outward ? -1 : 0);
   }
 };
 
@@ -514,7 +523,7 @@ Real monotone_crossing(const Gap& g, InSpan in_span, const Real& start, const Re
   Real tau = below ? Real(start + (end - start) / 2) : start;
   for (int k = 0; k < 100; ++k) {
     const auto p = g.taylor(tau);
-    const Real tol = g.tolerance(tau);
+    const Real tol = p.tol;
     if (abs(p.f) <= tol) {
       if (!(p.df > 0)) return undecided;  // (f' > 0 was certified: only rounding could do this)
       return in_span(p.x) ? polished_root(tau, p, tol) : Real(never);
