@@ -206,7 +206,8 @@ TEST_CASE("the windows searched in time order find the collision the wall-by-wal
   // collision() searches all walls' windows in the order in which they open, solving windows of
   // certain slope by a bracketed Halley iteration; the wall-by-wall certified scan (checked
   // against MPFR above) must find the same first hit, along trajectories (each flight starts on
-  // the wall just bounced off), with and without a horizon, at low and high frequencies.
+  // the wall just bounced off), with and without a horizon, at low and high frequencies.  The
+  // state at the hit must carry its phase's sine and cosine.
   for (const char* name : {"clover", "l-room", "mushroom", "sinai", "stadium", "annulus"}) {
     const auto region = geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml").region;
     const dynamics::Table table(region);
@@ -232,6 +233,11 @@ TEST_CASE("the windows searched in time order find the collision the wall-by-wal
           CHECK(t_end != dynamics::never);  // (no wall within the horizon)
           continue;
         }
+        // The state at the hit takes the drive's sine and cosine from the root search's last
+        // sample, corrected to the hit's phase: as exact as computing them anew.
+        const double phase = double(hit.state.phase);
+        if (std::abs(hit.state.sin_phase - std::sin(phase)) > 1e-15 || std::abs(hit.state.cos_phase - std::cos(phase)) > 1e-15)
+          ++mismatches;
         dynamics::bounce(flight, s, hit);
         ++bounces;
       }

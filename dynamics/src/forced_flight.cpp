@@ -57,11 +57,27 @@ auto BasicPeriodicDriveFlight<Real>::start(const BasicState<Real>& s) const -> S
   return d;
 }
 
+namespace {
+
+/// The state's phase at τ after s, from `near` when known.
 template <class Real>
-auto BasicPeriodicDriveFlight<Real>::advance(const State& s, const Real& t) const -> State {
+void set_phase_at(BasicDrivenState<Real>& r, const BasicDrivenState<Real>& s, const Real& omega, const Real& tau,
+                  const scan::PhaseSample<Real>& near) {
+  const auto theta = advance_phase(s.phase, omega, tau);
+  if (near.known() && near.near(theta))
+    r.set_phase(theta, near.at(theta));
+  else
+    r.set_phase(theta);
+}
+
+}  // namespace
+
+template <class Real>
+auto BasicPeriodicDriveFlight<Real>::advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near) const
+    -> State {
   const Real tau = t - s.t;
   State r = s;
-  r.set_phase(advance_phase(s.phase, omega, tau));
+  set_phase_at(r, s, omega, tau, near);
   const Vec2T<Real> amp_v = accel / omega, amp_x = accel / (omega * omega);
   r.v = s.v + amp_v * Real(r.sin_phase - s.sin_phase);
   r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * Real(r.cos_phase - s.cos_phase);
@@ -140,18 +156,15 @@ void with_wall(const BasicTable<Real>& table, const Q& q, int wall, Fn&& fn) {
 
 }  // namespace
 
-template <class Flight>
-auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_end) const -> BasicHit<Real> {
-  const auto& q = quiver;
+namespace {
+
+/// The first hit of the flight q among the table's walls before t_end, into `best` (t and
+/// wall) and `phase`: every wall's windows until the horizon, searched earliest first.
+template <class Real, class Q>
+void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Real>& best, scan::PhaseSample<Real>& phase) {
   const int walls = int(table.wall_count());
-  BasicHit<Real> best;
-  best.t = t_end;
-  if (q.creeping) {  // (creep's jumps are interleaved with the windows of one wall at a time)
-    for (int w = 0; w < walls; ++w) detail::try_wall(table, *this, w, best);
-    return best;
-  }
   // Every wall's windows until the horizon, earliest first.
-  Real tau_best = t_end - q.s.t;
+  Real tau_best = best.t - q.s.t;
   boost::container::small_vector<scan::Window<Real>, 16> windows;
   for (int w = 0; w < walls; ++w) {
     with_wall(table, q, w, [&](const auto&, const auto& gap) {
@@ -172,14 +185,31 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
       // A window in which the particle cannot reach the wall's span is passed unsampled.
       if (!may_meet_span(wall, q.guide(window.start), q.guide(window.end), q.delta)) return;
       auto in_span = [&wall](const Vec2T<Real>& x) { return wall.within_span(x); };
-      const Real tau = scan::crossing_in_window(gap, in_span, window);
+      scan::PhaseSample<Real> sampled;
+      const Real tau = scan::crossing_in_window(gap, in_span, window, sampled);
       if (tau < tau_best) {
         tau_best = tau;
         best.wall = window.wall;
+        phase = sampled;
       }
     });
   }
   if (best.found()) best.t = q.s.t + tau_best;
+}
+
+}  // namespace
+
+template <class Flight>
+auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_end) const -> FlightHit<Flight> {
+  FlightHit<Flight> best;
+  best.t = t_end;
+  scan::PhaseSample<Real> phase;  // the drive's phase sampled at the best root, if it was
+  if (quiver.creeping) {  // (creep's jumps are interleaved with the windows of one wall at a time)
+    for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, *this, w, best);
+  } else {
+    first_hit_in_windows(table, quiver, best, phase);
+  }
+  if (best.found()) best.state = quiver.flight.advance(quiver.s, best.t, phase);
   return best;
 }
 
@@ -196,10 +226,11 @@ auto DrivenScan<Flight>::exit_time(const BasicArcWall<Real>& w, const Real& t_en
 // ---- Quivering walls ---------------------------------------------------------------------
 
 template <class Real>
-auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t) const -> State {
+auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near) const
+    -> State {
   const Real tau = t - s.t;
   State r = s;
-  r.set_phase(advance_phase(s.phase, omega, tau));
+  set_phase_at(r, s, omega, tau, near);
   r.x = s.x + s.v * tau - accel / (omega * omega) * Real(r.cos_phase - s.cos_phase);
   r.t = t;
   return r;

@@ -275,15 +275,37 @@ struct Quiver {
   /// Position, velocity and acceleration (F/m) cos θ τ after the start.
   struct Motion {
     V x, v, a;
+    Real th, sin_th, cos_th;  // the drive's phase θ there (not reduced)
   };
   Motion motion(const Real& tau) const {
     using std::cos;
     using std::sin;
-    if (tau == 0) return {s.x, v0, flight.accel * s.cos_phase};
+    if (tau == 0) return {s.x, v0, flight.accel * s.cos_phase, Real(s.phase), s.sin_phase, s.cos_phase};
     const Real th = creeping ? Real(reduce_phase(advance_phase(s.phase, flight.omega, tau)))
                              : Real(Real(s.phase) + flight.omega * tau);
-    const Real c = cos(th);
-    return {g0 + u * tau - amp_x * c, u + amp_v * Real(sin(th)), flight.accel * c};
+    const Real c = cos(th), sn = sin(th);
+    return {g0 + u * tau - amp_x * c, u + amp_v * sn, flight.accel * c, th, sn, c};
+  }
+};
+
+/// The drive's phase θ (as computed in Real, not reduced) and its sine and cosine at one
+/// sample of a root search: the state at the root, a polishing step away, is had from them
+/// without another sine and cosine.  (Not for creeping flights, whose samples reduce θ.)
+template <class Real>
+struct PhaseSample {
+  Real theta = never, sin = 0, cos = 1;
+  bool known() const { return theta != never; }
+  /// Is the phase `precise` (in the phase type) within h_max = 1e-5 of θ, not reduced?  (A
+  /// flight of 2²⁰ rad and more has its phase partly reduced by advance_phase.)
+  bool near(const PhaseOf<Real>& precise) const {
+    using std::abs;
+    return abs(Real(precise - PhaseOf<Real>(theta))) <= Real(1e-5);
+  }
+  /// sin and cos of `precise` (θ + h, near θ): to second order in h, which corrects both the
+  /// polishing step and the rounding of θ in Real, exact to rounding for |h| ≤ h_max.
+  std::pair<Real, Real> at(const PhaseOf<Real>& precise) const {
+    const Real h = Real(precise - PhaseOf<Real>(theta));
+    return {sin + h * (cos - h / 2 * sin), cos - h * (sin + h / 2 * cos)};
   }
 };
 
@@ -295,6 +317,7 @@ struct Taylor {
   Real f, df, d2f;
   V x;
   Real tol;
+  Real th, sin_th, cos_th;  // the drive's phase there
 };
 
 /// A stretch [start, end] of a driven flight in which its guide is within two margins (the
@@ -358,7 +381,7 @@ struct PlaneGap {
   }
   Taylor<Real, V> taylor(const Real& tau) const {
     const auto m = q.motion(tau);
-    return {n.dot(m.x - a), n.dot(m.v), n.dot(m.a), m.x, tolerance(tau)};
+    return {n.dot(m.x - a), n.dot(m.v), n.dot(m.a), m.x, tolerance(tau), m.th, m.sin_th, m.cos_th};
   }
   /// First time ≥ τ at which the guide comes within the margin (B and rounding) of the wall, or
   /// +∞: before it f cannot vanish.
@@ -430,7 +453,7 @@ struct SphereGap {
     const V p = m.x - c;
     const Real tol = tolerance(tau);
     return {sign * (p.squaredNorm() - r * r), 2 * sign * p.dot(m.v), 2 * sign * (m.v.squaredNorm() + p.dot(m.a)), m.x,
-            2 * tol * (r - tol)};
+            2 * tol * (r - tol), m.th, m.sin_th, m.cos_th};
   }
   Real window_start(const Real& tau) const {
     using std::max;
@@ -513,9 +536,11 @@ inline constexpr double undecided = -1;
 /// scan, whose steps converge like Newton's, takes ~4).
 /// `below`: f(start) < 0 is known (the guide entered the window from f's negative side) and
 /// start need not be sampled.  Returns the root, +∞ when f does not cross zero in the window or
-/// crosses outside the wall's span, or `undecided` when the iteration stalls.
+/// crosses outside the wall's span, or `undecided` when the iteration stalls; `*phase` keeps
+/// the drive's phase at the root's last sample.
 template <class Gap, class InSpan, class Real>
-Real monotone_crossing(const Gap& g, InSpan in_span, const Real& start, const Real& end, bool below) {
+Real monotone_crossing(const Gap& g, InSpan in_span, const Real& start, const Real& end, bool below,
+                       PhaseSample<Real>& phase) {
   using std::abs;
   Real lo = start, hi = end;  // f(lo) < 0; f(hi) > 0 once `bracketed`
   bool bracketed = false;
@@ -526,7 +551,9 @@ Real monotone_crossing(const Gap& g, InSpan in_span, const Real& start, const Re
     const Real tol = p.tol;
     if (abs(p.f) <= tol) {
       if (!(p.df > 0)) return undecided;  // (f' > 0 was certified: only rounding could do this)
-      return in_span(p.x) ? polished_root(tau, p, tol) : Real(never);
+      if (!in_span(p.x)) return never;
+      phase = {p.th, p.sin_th, p.cos_th};
+      return polished_root(tau, p, tol);
     }
     if (p.f < 0) {
       if (tau >= end) return never;  // still below at the end of the window
@@ -546,13 +573,14 @@ Real monotone_crossing(const Gap& g, InSpan in_span, const Real& start, const Re
 }
 
 /// The first collision with one wall in its window [start, end]: +∞ when f' < 0 throughout,
-/// the monotone search when f' > 0 throughout, else the certified scan of the window.
+/// the monotone search when f' > 0 throughout (which keeps the drive's phase there in
+/// `*phase`), else the certified scan of the window.
 template <class Gap, class InSpan, class Real>
-Real crossing_in_window(const Gap& g, InSpan in_span, const Window<Real>& w) {
+Real crossing_in_window(const Gap& g, InSpan in_span, const Window<Real>& w, PhaseSample<Real>& phase) {
   const int slope = g.slope_sign(w);
   if (slope < 0) return never;
   if (slope > 0) {
-    const Real tau = monotone_crossing(g, in_span, w.start, w.end, w.below);
+    const Real tau = monotone_crossing(g, in_span, w.start, w.end, w.below, phase);
     if (tau != undecided) return tau;
   }
   auto sample = [&](const Real& tau) { return g.sample(tau); };

@@ -72,19 +72,21 @@ template <class Flight>
 FlightHit<Flight> collision(const BasicTable<typename Flight::Scalar>& table, const Flight& flight,
                             const typename Flight::State& s, const typename Flight::Scalar& t_end = never) {
   FlightHit<Flight> best;
-  if constexpr (std::is_same_v<Flight, FreeFlight>) {
-    if (table.grid()) static_cast<Hit&>(best) = detail::grid_collision(table, flight, s, t_end);
-  }
-  if (!table.grid() || !std::is_same_v<Flight, FreeFlight>) {
-    best.t = t_end;
-    const auto scan = detail::scan_from(flight, s);
-    if constexpr (requires { scan.first_hit(table, t_end); })
-      static_cast<BasicHit<typename Flight::Scalar>&>(best) = scan.first_hit(table, t_end);
-    else
+  const auto scan = detail::scan_from(flight, s);
+  if constexpr (requires { scan.first_hit(table, t_end); }) {
+    best = scan.first_hit(table, t_end);  // (with the state at the hit)
+    if (!best.found()) return best;
+  } else {
+    if constexpr (std::is_same_v<Flight, FreeFlight>) {
+      if (table.grid()) static_cast<Hit&>(best) = detail::grid_collision(table, flight, s, t_end);
+    }
+    if (!table.grid() || !std::is_same_v<Flight, FreeFlight>) {
+      best.t = t_end;
       for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, scan, w, best);
+    }
+    if (!best.found()) return best;
+    best.state = flight.advance(s, best.t);
   }
-  if (!best.found()) return best;
-  best.state = flight.advance(s, best.t);
   std::tie(best.point, best.normal) = table.contact(best.wall, best.state.x);
   return best;
 }

@@ -19,7 +19,9 @@
 #include <boost/math/constants/constants.hpp>
 
 #include <cmath>
+#include <tuple>
 #include <type_traits>
+#include <utility>
 
 namespace billiards::dynamics {
 
@@ -37,6 +39,11 @@ struct BasicDrivenState : BasicState<Real> {
     sin_phase = sin(Real(phase));
     cos_phase = cos(Real(phase));
   }
+  /// The same with a sine and cosine already known.
+  void set_phase(const PhaseOf<Real>& theta, const std::pair<Real, Real>& sin_cos) {
+    phase = reduce_phase(theta);
+    std::tie(sin_phase, cos_phase) = sin_cos;
+  }
 };
 using DrivenState = BasicDrivenState<double>;
 
@@ -50,12 +57,12 @@ struct DrivenScan {
   scan::Quiver<Flight, BasicDrivenState<Real>> quiver;
   Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const;
-  /// The first wall of the table the flight leaves through before t_end (the hit's t and
-  /// wall; wall −1 if none).  The walls' windows — the only stretches of the flight in which
+  /// The first wall of the table the flight leaves through before t_end (the hit's t, wall and
+  /// the flight's state there; wall −1 if none).  The walls' windows — the only stretches of the flight in which
   /// they can be hit — are searched in the order in which they open, so a wall whose window
   /// opens after the collision found is never sampled; in a window where the sign of f' is
   /// certain, the root is found by a bracketed Newton iteration instead of the certified scan.
-  BasicHit<Real> first_hit(const BasicTable<Real>& table, const Real& t_end) const;
+  FlightHit<Flight> first_hit(const BasicTable<Real>& table, const Real& t_end) const;
 };
 
 /// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0).
@@ -71,8 +78,9 @@ struct BasicPeriodicDriveFlight {
 
   State start(const BasicState<Real>& s) const;
   /// Appendix B: v(t) = v_s + (F/mω)[sin θ(t) − sin θ_s],
-  /// x(t) = x_s + [v_s − (F/mω) sin θ_s](t − t_s) − (F/mω²)[cos θ(t) − cos θ_s].
-  State advance(const State& s, const Real& t) const;
+  /// x(t) = x_s + [v_s − (F/mω) sin θ_s](t − t_s) − (F/mω²)[cos θ(t) − cos θ_s];
+  /// sin θ(t) and cos θ(t) from `near` when it is known (a sample of a root search).
+  State advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near = {}) const;
   DrivenScan<BasicPeriodicDriveFlight> scan_from(const State& s) const { return {{*this, s}}; }
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
     return scan_from(s).exit_time(w, t_end);
@@ -106,8 +114,8 @@ struct BasicQuiveringWallFlight {
   /// s: position relative to the walls and free velocity ẏ (at phase0 = 0 and t = 0, ḋ = 0
   /// and ẏ is the lab velocity).
   State start(const BasicState<Real>& s) const { return BasicPeriodicDriveFlight<Real>{accel, omega, phase0}.start(s); }
-  /// y(t) = y_s + ẏ (t − t_s); x = y − d(t).
-  State advance(const State& s, const Real& t) const;
+  /// y(t) = y_s + ẏ (t − t_s); x = y − d(t) (`near` as for the lab flight).
+  State advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near = {}) const;
   /// ḋ, the walls' velocity at the state's time.
   Vec2T<Real> wall_velocity(const State& s) const { return -accel / omega * s.sin_phase; }
   /// The lab flight's scan, seen from the walls: guiding velocity ẏ, velocity relative to the
