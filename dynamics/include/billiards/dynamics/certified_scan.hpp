@@ -480,6 +480,10 @@ struct SphereGap {
     const V q0 = q.g0 - c;
     const Real b = q0.dot(q.u), cc = q0.squaredNorm(), uu = q.uu;
     if (!(uu > 0)) return clip_window(0, out, Real(0), horizon, Real(q.delta + tolerance(horizon)), false, horizon);
+    // Most walls are out of reach: the guide misses the sphere, or moves away from it, even
+    // with the margin at the horizon (no smaller than any margin below).
+    const Real reach = r + 2 * (q.delta + tolerance(horizon)), k_reach = cc - reach * reach;
+    if (k_reach > 0 && (b >= 0 || b * b < uu * k_reach)) return 0;
     const Real c0 = tolerance(Real(0)), c1 = 8 * eps<Real> * q.rounding_rate;
     const Real m = q.delta + tolerance(min(horizon, window_horizon(Real(-b / uu), Real(r + 2 * q.delta), c0, c1, q.speed)));
     // Times at which the guide is at distance ρ from c: the roots of uu τ² + 2bτ + cc − ρ²,
