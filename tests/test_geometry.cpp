@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <tuple>
 
 using namespace billiards;
 using geometry::pi;
@@ -117,6 +118,45 @@ TEST_CASE("the triangle's area by Heron's formula") {
   for (const auto& p : shape.region.outer.pieces) sides.push_back(geometry::length_of(p));
   const double s = (sides[0] + sides[1] + sides[2]) / 2;
   CHECK(close(m.volume, std::sqrt(s * (s - sides[0]) * (s - sides[1]) * (s - sides[2])), 1e-13));
+}
+
+TEST_CASE("the containment test's classified cells answer as the crossing count does") {
+  // contains(p) answers from a cell no wall comes near; contains(p, tolerance) always counts
+  // crossings.  They must agree everywhere: at random points of the box and just beside walls
+  // (points pushed off each wall by ±tolerance/2 and ±3 tolerances).
+  for (const char* name : {"clover", "mushroom", "sinai", "annulus", "l-room", "wavy-1200"}) {
+    INFO(name);
+    const auto shape = geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml");
+    const dynamics::Table table(shape.region);
+    dynamics::ParticleRng rng(5, 0);
+    const Vec2 lo = table.lo(), size = table.hi() - table.lo();
+    int disagreements = 0, classified = 0;
+    auto check = [&](const Vec2& p) {
+      disagreements += table.contains(p) != table.contains(p, table.tolerance());
+    };
+    for (int i = 0; i < 200000; ++i) {
+      const Vec2 p = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
+      check(p);
+      classified += table.classes().of(p) != dynamics::Table::Classes::mixed;
+    }
+    for (int i = 0; i < 20000; ++i) {
+      const Vec2 p = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
+      const int w = int(rng.uniform() * table.wall_count());
+      // The nearest point of wall w's line or circle, then off it along the normal.
+      Vec2 foot, n;
+      if (table.is_arc(w)) {
+        std::tie(foot, n) = table.arcs()[w - table.segments().size()].contact(p);
+      } else {
+        const auto& seg = table.segments()[w];
+        foot = seg.project(p);
+        n = seg.normal;
+      }
+      for (const double k : {-3.0, -0.5, 0.5, 3.0}) check(foot + k * table.tolerance() * n);
+    }
+    CHECK(disagreements == 0);
+    UNSCOPED_INFO(name << ": " << classified / 2000.0 << "% of the box in classified cells");
+    CHECK(classified > 100000);  // (the lookup answers for most points)
+  }
 }
 
 TEST_CASE("Monte Carlo area with the winding-number test matches V within 4 sigma") {

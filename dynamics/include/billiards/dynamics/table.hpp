@@ -36,8 +36,9 @@ class BasicTable {
   const geometry::SourceRef& source_of(int wall) const { return sources_[wall]; }
 
   /// Is p inside the region?  Crossing-number test, independent of the collision kernels;
-  /// points within `tolerance` of a wall count as inside.
-  bool contains(const V& p) const { return contains(p, tolerance_); }
+  /// points within `tolerance` of a wall count as inside.  Answered at once in a cell of
+  /// `classes` that no wall comes near.
+  bool contains(const V& p) const;
   /// The same with another tolerance (0: the closed region, to the rounding of the test).
   bool contains(const V& p, double tolerance) const;
   /// Distance from p to the nearest wall.
@@ -55,8 +56,21 @@ class BasicTable {
   };
   const Grid* grid() const { return grid_.nx ? &grid_ : nullptr; }
 
+  /// A uniform grid over the bounding box whose cells are classified once: a cell farther from
+  /// every wall than its half-diagonal and the tolerance lies wholly inside or wholly outside
+  /// (no wall crosses it), as its centre does; the others are mixed.
+  struct Classes {
+    enum : signed char { outside = 0, inside = 1, mixed = -1 };
+    Vec2 origin, inverse_cell;  // lower corner and 1 / cell size
+    int nx = 0, ny = 0;
+    std::vector<signed char> cell;
+    int of(const Vec2& p) const;  // the class of p's cell; mixed outside the grid
+  };
+  const Classes& classes() const { return classes_; }
+
  private:
   void build_grid();
+  void build_classes();
   std::vector<BasicSegmentWall<Real>> segments_;
   std::vector<BasicArcWall<Real>> arcs_;
   std::vector<geometry::SourceRef> sources_;
@@ -64,6 +78,7 @@ class BasicTable {
   Vec2 lo_, hi_;
   double tolerance_ = 0;
   Grid grid_;
+  Classes classes_;
 };
 using Table = BasicTable<double>;
 
