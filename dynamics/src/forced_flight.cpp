@@ -3,8 +3,6 @@
 #include "billiards/dynamics/certified_scan.hpp"
 #include "billiards/dynamics/precision.hpp"
 
-#include <boost/container/small_vector.hpp>
-
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -158,42 +156,22 @@ void with_wall(const BasicTable<Real>& table, const Q& q, int wall, Fn&& fn) {
 
 namespace {
 
-/// The first hit of the flight q among the table's walls before t_end, into `best` (t and
-/// wall) and `phase`: every wall's windows until the horizon, searched earliest first.
+/// The first hit of the flight q among the table's walls before best.t, into `best` (t and
+/// wall) and `phase`.
 template <class Real, class Q>
 void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Real>& best, scan::PhaseSample<Real>& phase) {
-  const int walls = int(table.wall_count());
-  // Every wall's windows until the horizon, earliest first.
   Real tau_best = best.t - q.s.t;
-  boost::container::small_vector<scan::Window<Real>, 16> windows;
-  for (int w = 0; w < walls; ++w) {
-    with_wall(table, q, w, [&](const auto&, const auto& gap) {
-      scan::Window<Real> found[2];
-      for (int k = 0, n = gap.windows(tau_best, found); k < n; ++k) {
-        found[k].wall = w;
-        windows.push_back(found[k]);
-        for (std::size_t i = windows.size() - 1; i > 0 && windows[i - 1].start > windows[i].start; --i)
-          std::swap(windows[i - 1], windows[i]);
-      }
-    });
-  }
-  for (std::size_t k = 0; k < windows.size() && windows[k].start <= tau_best; ++k) {
-    with_wall(table, q, windows[k].wall, [&](const auto& wall, const auto& gap) {
-      auto window = windows[k];
-      using std::min;
-      window.end = min(window.end, tau_best);
+  auto visit = [&](int w, auto&& fn) {
+    with_wall(table, q, w, [&](const auto& wall, const auto& gap) {
       // A window in which the particle cannot reach the wall's span is passed unsampled.
-      if (!may_meet_span(wall, q.guide(window.start), q.guide(window.end), q.delta)) return;
+      auto passes = [&](const Real& start, const Real& end) {
+        return !may_meet_span(wall, q.guide(start), q.guide(end), q.delta);
+      };
       auto in_span = [&wall](const Vec2T<Real>& x) { return wall.within_span(x); };
-      scan::PhaseSample<Real> sampled;
-      const Real tau = scan::crossing_in_window(gap, in_span, window, sampled);
-      if (tau < tau_best) {
-        tau_best = tau;
-        best.wall = window.wall;
-        phase = sampled;
-      }
+      fn(gap, passes, in_span);
     });
-  }
+  };
+  scan::first_hit_in_windows(int(table.wall_count()), visit, tau_best, best.wall, phase);
   if (best.found()) best.t = q.s.t + tau_best;
 }
 

@@ -175,23 +175,46 @@ Hit3 Table3::collision(const State3& s, double t_end) const {
 }
 
 Hit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end) const {
+  using Quiver3 = dynamics::scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
   Hit3 best;
   best.t = t_end;
-  for (int w = 0; w < int(planes_.size()); ++w) {
-    const double t = flight.exit_time(s, planes_[w], best.t);
-    if (t < best.t) best.t = t, best.wall = w;
+  const Quiver3 q(flight, s);
+  const int np = int(planes_.size()), nt = int(triangles_.size()), ns = int(spheres_.size());
+  if (q.creeping) {  // (creep's jumps are interleaved with the windows of one wall at a time)
+    for (int w = 0; w < np; ++w) {
+      const double t = flight.exit_time(s, planes_[w], best.t);
+      if (t < best.t) best.t = t, best.wall = w;
+    }
+    for (int w = 0; w < ns; ++w) {
+      const double t = flight.exit_time(s, spheres_[w], best.t);
+      if (t < best.t) best.t = t, best.wall = np + nt + w;
+    }
+  } else {
+    // Planes and spheres: their windows in time order, as in 2-D (no spans to cull by).
+    auto never_passes = [](double, double) { return false; };
+    auto everywhere = [](const Vec3&) { return true; };
+    auto visit = [&](int w, auto&& fn) {
+      if (w < np) {
+        const PlaneWall& p = planes_[w];
+        fn(dynamics::scan::PlaneGap<Quiver3, Vec3>(q, p.normal, Vec3(p.normal * p.offset), p.slack), never_passes,
+           everywhere);
+      } else {
+        const SphereWall& b = spheres_[w - np];
+        fn(dynamics::scan::SphereGap<Quiver3, Vec3>(q, b.center, b.radius, b.focusing, b.slack), never_passes,
+           everywhere);
+      }
+    };
+    double tau_best = t_end - s.t;
+    int wall = -1;
+    dynamics::scan::PhaseSample<double> phase;  // (the 3-D state is advanced anew at the hit)
+    dynamics::scan::first_hit_in_windows(np + ns, visit, tau_best, wall, phase);
+    if (wall >= 0) best.t = s.t + tau_best, best.wall = wall < np ? wall : wall + nt;
   }
-  if (!triangles_.empty()) {
+  if (nt > 0) {
     // The particle stays within δ = |F|/(mω²) of its guiding line: boxes grown by δ (and the
     // scan's rounding band) along that line hold every triangle it can cross.
-    const dynamics::scan::Quiver<PeriodicDriveFlight3, DrivenState3> q(flight, s);
     search_triangles(q.g0, q.u, q.delta + 2 * slack_, s.t, best,
                      [&](const TriangleWall& w, double t) { return flight.exit_time(s, w, t); });
-  }
-  const int base = int(planes_.size() + triangles_.size());
-  for (int w = 0; w < int(spheres_.size()); ++w) {
-    const double t = flight.exit_time(s, spheres_[w], best.t);
-    if (t < best.t) best.t = t, best.wall = base + w;
   }
   if (!best.found()) return best;
   best.point = flight.advance(s, best.t).x;

@@ -12,6 +12,7 @@
 #include "billiards/dynamics/flight.hpp"
 #include "billiards/dynamics/phase.hpp"
 
+#include <boost/container/small_vector.hpp>
 #include <boost/math/constants/constants.hpp>
 
 #include <algorithm>
@@ -591,6 +592,43 @@ Real crossing_in_window(const Gap& g, InSpan in_span, const Window<Real>& w, Pha
   auto tolerance = [&](const Real& tau) { return g.tolerance(tau); };
   auto earliest = [&](const Real& tau) { return tau < w.start ? w.start : tau; };
   return first_outward_crossing(sample, earliest, in_span, tolerance, w.end);
+}
+
+/// The first collision of a driven flight with any of `walls` walls before τ = tau_best:
+/// tau_best, best_wall and `phase` (the drive's phase at the root, when the monotone search
+/// found it) are updated.  Every wall's windows until then are computed in closed form and
+/// searched in the order in which they open, so the search stops at the first window that
+/// opens after the best collision found and the walls beyond it are never sampled.
+/// `visit(w, fn)` calls fn(gap, passes, in_span) for wall w: its gap (PlaneGap or SphereGap),
+/// passes(start, end), true when the particle cannot reach the wall's span in the window, and
+/// the span test in_span(x).  Not for creeping flights (see `creep`), whose gaps these are.
+template <class Real, class Visit>
+void first_hit_in_windows(int walls, Visit visit, Real& tau_best, int& best_wall, PhaseSample<Real>& phase) {
+  using std::min;
+  boost::container::small_vector<Window<Real>, 16> windows;  // earliest first
+  for (int w = 0; w < walls; ++w)
+    visit(w, [&](const auto& gap, const auto&, const auto&) {
+      Window<Real> found[2];
+      for (int k = 0, n = gap.windows(tau_best, found); k < n; ++k) {
+        found[k].wall = w;
+        windows.push_back(found[k]);
+        for (std::size_t i = windows.size() - 1; i > 0 && windows[i - 1].start > windows[i].start; --i)
+          std::swap(windows[i - 1], windows[i]);
+      }
+    });
+  for (std::size_t k = 0; k < windows.size() && windows[k].start <= tau_best; ++k)
+    visit(windows[k].wall, [&](const auto& gap, const auto& passes, const auto& in_span) {
+      auto window = windows[k];
+      window.end = min(window.end, tau_best);
+      if (passes(window.start, window.end)) return;
+      PhaseSample<Real> sampled;
+      const Real tau = crossing_in_window(gap, in_span, window, sampled);
+      if (tau < tau_best) {
+        tau_best = tau;
+        best_wall = window.wall;
+        phase = sampled;
+      }
+    });
 }
 
 /// The scan of a driven flight through one wall (`first_outward_crossing` of the gap g) whose
