@@ -135,10 +135,6 @@ Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, c
   return tau == never ? Real(never) : Real(t0 + tau);
 }
 
-}  // namespace
-
-namespace {
-
 /// fn(wall, gap): wall number `wall` of the table and its gap seen from the flight q.
 template <class Real, class Q, class Fn>
 void with_wall(const BasicTable<Real>& table, const Q& q, int wall, Fn&& fn) {
@@ -151,10 +147,6 @@ void with_wall(const BasicTable<Real>& table, const Q& q, int wall, Fn&& fn) {
     fn(w, scan::SphereGap<Q, Vec2T<Real>>(q, w.center, w.radius, w.focusing, w.slack));
   }
 }
-
-}  // namespace
-
-namespace {
 
 /// The first hit of the flight q among the table's walls before best.t, into `best` (t and
 /// wall) and `phase`.
