@@ -174,7 +174,11 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
   FlightHit<Flight> best;
   best.t = t_end;
   scan::PhaseSample<Real> phase;  // the drive's phase sampled at the best root, if it was
-  if (quiver.creeping) {  // (creep's jumps are interleaved with the windows of one wall at a time)
+  // Wall by wall for creeping guides (creep's jumps are interleaved with the windows of one
+  // wall at a time) and for tables of many walls, where each wall's disk test against the
+  // best hit so far culls nearly all of them, while the windows of every wall along the guiding
+  // line would be computed and sorted (wavy-1200: 25× slower).
+  if (quiver.creeping || table.wall_count() > scan::windows_in_time_order_walls) {
     for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, *this, w, best);
   } else {
     first_hit_in_windows(table, quiver, best, phase);

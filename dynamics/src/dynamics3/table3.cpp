@@ -180,7 +180,7 @@ Hit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s
   best.t = t_end;
   const Quiver3 q(flight, s);
   const int np = int(planes_.size()), nt = int(triangles_.size()), ns = int(spheres_.size());
-  if (q.creeping) {  // (creep's jumps are interleaved with the windows of one wall at a time)
+  if (q.creeping || np + ns > dynamics::scan::windows_in_time_order_walls) {  // (as in 2-D: DrivenScan::first_hit)
     for (int w = 0; w < np; ++w) {
       const double t = flight.exit_time(s, planes_[w], best.t);
       if (t < best.t) best.t = t, best.wall = w;

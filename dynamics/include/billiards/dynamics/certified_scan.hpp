@@ -594,6 +594,9 @@ Real crossing_in_window(const Gap& g, InSpan in_span, const Window<Real>& w, Pha
   return first_outward_crossing(sample, earliest, in_span, tolerance, w.end);
 }
 
+/// Tables of more walls than this are searched wall by wall (see DrivenScan::first_hit).
+inline constexpr int windows_in_time_order_walls = 24;
+
 /// The first collision of a driven flight with any of `walls` walls before τ = tau_best:
 /// tau_best, best_wall and `phase` (the drive's phase at the root, when the monotone search
 /// found it) are updated.  Every wall's windows until then are computed in closed form and
