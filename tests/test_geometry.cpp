@@ -123,7 +123,8 @@ TEST_CASE("the triangle's area by Heron's formula") {
 TEST_CASE("the containment test's classified cells answer as the crossing count does") {
   // contains(p) answers from a cell no wall comes near; contains(p, tolerance) always counts
   // crossings.  They must agree everywhere: at random points of the box and just beside walls
-  // (points pushed off each wall by ±tolerance/2 and ±3 tolerances).
+  // (points pushed off each wall by ±tolerance/2 and ±3 tolerances); and a segment that
+  // certainly_contains certifies must be inside at every point.
   for (const char* name : {"clover", "mushroom", "sinai", "annulus", "l-room", "wavy-1200"}) {
     INFO(name);
     const auto shape = geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml");
@@ -153,7 +154,20 @@ TEST_CASE("the containment test's classified cells answer as the crossing count 
       }
       for (const double k : {-3.0, -0.5, 0.5, 3.0}) check(foot + k * table.tolerance() * n);
     }
+    // A segment certified inside (both ends in one inside cell) is inside all along.
+    int certified = 0, wrong = 0;
+    for (int i = 0; i < 20000; ++i) {
+      const Vec2 p = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
+      const double angle = 2 * geometry::pi * rng.uniform(), length = 0.002 * size.norm() * rng.uniform();  // (δ-sized, as a drive's oscillation segment)
+      const Vec2 q = p + length * Vec2(std::cos(angle), std::sin(angle));
+      if (!table.certainly_contains(p, q)) continue;
+      ++certified;
+      for (int k = 0; k <= 16; ++k) wrong += !table.contains(p + (q - p) * (k / 16.0), table.tolerance());
+    }
     CHECK(disagreements == 0);
+    CHECK(wrong == 0);
+    CHECK(certified > 5000);  // (most short segments in the region are certified at once)
+    UNSCOPED_INFO(name << ": " << certified << " of 20000 short segments certified inside");
     UNSCOPED_INFO(name << ": " << classified / 2000.0 << "% of the box in classified cells");
     CHECK(classified > 100000);  // (the lookup answers for most points)
   }

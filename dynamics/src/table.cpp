@@ -91,10 +91,16 @@ BasicTable<Real>::BasicTable(const geometry::Region2& region) {
 }
 
 template <class Real>
-int BasicTable<Real>::Classes::of(const Vec2& p) const {
+int BasicTable<Real>::Classes::cell_of(const Vec2& p) const {
   const Vec2 u = (p - origin).cwiseProduct(inverse_cell);
-  if (!(u.x() >= 0 && u.y() >= 0 && u.x() < nx && u.y() < ny)) return mixed;  // (NaN too)
-  return cell[std::size_t(int(u.y())) * nx + int(u.x())];
+  if (!(u.x() >= 0 && u.y() >= 0 && u.x() < nx && u.y() < ny)) return -1;  // (NaN too)
+  return int(u.y()) * nx + int(u.x());
+}
+
+template <class Real>
+int BasicTable<Real>::Classes::of(const Vec2& p) const {
+  const int i = cell_of(p);
+  return i < 0 ? mixed : cell[i];
 }
 
 template <class Real>
@@ -103,6 +109,15 @@ bool BasicTable<Real>::contains(const V& p) const {
     if (const int c = classes_.of(p.template cast<double>()); c != Classes::mixed) return c == Classes::inside;
   }
   return contains(p, tolerance_);
+}
+
+template <class Real>
+bool BasicTable<Real>::certainly_contains(const V& p, const V& q) const {
+  if constexpr (std::is_floating_point_v<Real>) {
+    const int i = classes_.cell_of(p.template cast<double>());
+    return i >= 0 && i == classes_.cell_of(q.template cast<double>()) && classes_.cell[i] == Classes::inside;
+  }
+  return false;
 }
 
 template <class Real>

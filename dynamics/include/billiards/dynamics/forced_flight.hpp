@@ -82,6 +82,9 @@ struct BasicPeriodicDriveFlight {
   /// sin θ(t) and cos θ(t) from `near` when it is known (a sample of a root search).
   State advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near = {}) const;
   DrivenScan<BasicPeriodicDriveFlight> scan_from(const State& s) const { return {{*this, s}}; }
+  /// The oscillation segment guide ± F/(mω²) that holds the position at time t of the flight
+  /// from s (no sine or cosine: the ensemble's every-flight check looks it up first).
+  std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const { return scan_from(s).quiver.sweep(t - s.t); }
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
     return scan_from(s).exit_time(w, t_end);
   }
@@ -123,6 +126,8 @@ struct BasicQuiveringWallFlight {
   DrivenScan<BasicQuiveringWallFlight> scan_from(const State& s) const {
     return {{*this, s, s.v, s.v - wall_velocity(s)}};
   }
+  /// As for the lab flight (the position relative to the walls lies on it).
+  std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const { return scan_from(s).quiver.sweep(t - s.t); }
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
     return scan_from(s).exit_time(w, t_end);
   }

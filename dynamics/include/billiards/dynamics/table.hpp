@@ -39,6 +39,9 @@ class BasicTable {
   /// points within `tolerance` of a wall count as inside.  Answered at once in a cell of
   /// `classes` that no wall comes near.
   bool contains(const V& p) const;
+  /// Is the whole segment [p, q] certainly inside?  True when both ends lie in one cell of
+  /// `classes` classified inside (a cell is convex); false when that cannot be told at once.
+  bool certainly_contains(const V& p, const V& q) const;
   /// The same with another tolerance (0: the closed region, to the rounding of the test).
   bool contains(const V& p, double tolerance) const;
   /// Distance from p to the nearest wall.
@@ -64,7 +67,8 @@ class BasicTable {
     Vec2 origin, inverse_cell;  // lower corner and 1 / cell size
     int nx = 0, ny = 0;
     std::vector<signed char> cell;
-    int of(const Vec2& p) const;  // the class of p's cell; mixed outside the grid
+    int cell_of(const Vec2& p) const;  // the index of p's cell; −1 outside the grid
+    int of(const Vec2& p) const;       // the class of p's cell; mixed outside the grid
   };
   const Classes& classes() const { return classes_; }
 
