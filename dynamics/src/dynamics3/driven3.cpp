@@ -23,8 +23,7 @@ auto plane_clearance(const Quiver3& q, const Vec3& n, const Vec3& a) {
 
 void DrivenState3::set_phase(long double theta) {
   phase = dynamics::reduce_phase(theta);
-  sin_phase = std::sin(double(phase));
-  cos_phase = std::cos(double(phase));
+  std::tie(sin_phase, cos_phase) = dynamics::sin_cos(double(phase));
 }
 
 DrivenState3 PeriodicDriveFlight3::start(const State3& s) const {

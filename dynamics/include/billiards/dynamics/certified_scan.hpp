@@ -279,12 +279,10 @@ struct Quiver {
     Real th, sin_th, cos_th;  // the drive's phase θ there (not reduced)
   };
   Motion motion(const Real& tau) const {
-    using std::cos;
-    using std::sin;
     if (tau == 0) return {s.x, v0, flight.accel * s.cos_phase, Real(s.phase), s.sin_phase, s.cos_phase};
     const Real th = creeping ? Real(reduce_phase(advance_phase(s.phase, flight.omega, tau)))
                              : Real(Real(s.phase) + flight.omega * tau);
-    const Real c = cos(th), sn = sin(th);
+    const auto [sn, c] = sin_cos(th);
     return {g0 + u * tau - amp_x * c, u + amp_v * sn, flight.accel * c, th, sn, c};
   }
 };

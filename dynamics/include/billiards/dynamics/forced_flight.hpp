@@ -33,11 +33,8 @@ struct BasicDrivenState : BasicState<Real> {
   /// flight instead of once per wall.  Set them with the phase (set_phase).
   Real sin_phase = 0, cos_phase = 1;
   void set_phase(const PhaseOf<Real>& theta) {
-    using std::cos;
-    using std::sin;
     phase = reduce_phase(theta);
-    sin_phase = sin(Real(phase));
-    cos_phase = cos(Real(phase));
+    std::tie(sin_phase, cos_phase) = sin_cos(Real(phase));
   }
   /// The same with a sine and cosine already known.
   void set_phase(const PhaseOf<Real>& theta, const std::pair<Real, Real>& sin_cos) {
