@@ -76,7 +76,7 @@ auto BasicPeriodicDriveFlight<Real>::advance(const State& s, const Real& t, cons
   const Real tau = t - s.t;
   State r = s;
   set_phase_at(r, s, omega, tau, near);
-  const Vec2T<Real> amp_v = accel / omega, amp_x = accel / (omega * omega);
+  const auto [amp_x, amp_v] = drive_amplitudes(accel, omega);
   r.v = s.v + amp_v * Real(r.sin_phase - s.sin_phase);
   r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * Real(r.cos_phase - s.cos_phase);
   r.t = t;
@@ -205,7 +205,7 @@ auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t, cons
   const Real tau = t - s.t;
   State r = s;
   set_phase_at(r, s, omega, tau, near);
-  r.x = s.x + s.v * tau - accel / (omega * omega) * Real(r.cos_phase - s.cos_phase);
+  r.x = s.x + s.v * tau - drive_amplitudes(accel, omega).first * Real(r.cos_phase - s.cos_phase);
   r.t = t;
   return r;
 }

@@ -37,7 +37,7 @@ DrivenState3 PeriodicDriveFlight3::advance(const State& s, double t) const {
   const double tau = t - s.t;
   State r = s;
   r.set_phase(dynamics::advance_phase(s.phase, omega, tau));
-  const Vec3 amp_v = accel / omega, amp_x = accel / (omega * omega);
+  const auto [amp_x, amp_v] = dynamics::drive_amplitudes(accel, omega);
   r.v = s.v + amp_v * (r.sin_phase - s.sin_phase);
   r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * (r.cos_phase - s.cos_phase);
   r.t = t;

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 
@@ -230,27 +231,30 @@ struct Quiver {
   V v0;              // velocity relative to the walls at τ = 0
   V amp_x, amp_v;    // F/(mω²) and F/(mω): the oscillation's amplitudes
   Real accel_norm;   // |F|/m
+  Real inv_omega;    // 1/ω
   Real speed_bound;  // bound on |v| at any time of this flight
   Real delta;        // |F|/(mω²) ≥ |oscillation|
   Real speed;          // |u|
-  Real uu;             // |u|²
+  Real uu, inv_uu;     // |u|² and 1/|u|² (0 when u = 0)
   bool creeping;       // the guide moves less than δ per period (see `creep`)
   Real rounding_rate;  // how fast the rounding of x(τ) grows with τ (see `at`)
 
   /// The lab picture: s.v is the particle's velocity between fixed walls.
-  Quiver(const Flight& f, const State& st) : Quiver(f, st, st.v - f.accel / f.omega * st.sin_phase, st.v) {}
+  Quiver(const Flight& f, const State& st)
+      : Quiver(f, st, st.v - drive_amplitudes(f.accel, f.omega).second * st.sin_phase, st.v) {}
   /// From the guiding velocity u (the free particle's, in the quivering-wall picture) and the
   /// velocity relative to the walls at the start; s.x is the position relative to the walls.
   Quiver(const Flight& f, const State& st, const V& guiding_velocity, const V& relative_velocity)
       : flight(f), s(st), u(guiding_velocity), v0(relative_velocity) {
-    amp_x = f.accel / (f.omega * f.omega);
-    amp_v = f.accel / f.omega;
+    std::tie(amp_x, amp_v) = drive_amplitudes(f.accel, f.omega);
+    inv_omega = 1 / f.omega;
     accel_norm = f.accel.norm();
     g0 = st.x + amp_x * st.cos_phase;
     uu = u.squaredNorm();
+    inv_uu = uu > 0 ? Real(1 / uu) : Real(0);
     speed = sqrt(uu);
-    speed_bound = speed + accel_norm / f.omega;
-    delta = accel_norm / (f.omega * f.omega);
+    speed_bound = speed + accel_norm * inv_omega;
+    delta = accel_norm * inv_omega * inv_omega;
     creeping = speed * boost::math::constants::two_pi<Real>() < delta * f.omega;  // |u| T < δ
     rounding_rate = creeping ? speed : speed_bound;
   }
@@ -339,6 +343,16 @@ Real window_horizon(const Real& t0, const Real& d, const Real& c0, const Real& c
   return slack > 0 ? Real(t0 + (d + 2 * (c0 + c1 * t0)) / slack) : Real(never);
 }
 
+/// The time up to which a window's margin must cover the rounding of f: the horizon, or when
+/// there is none, `bound()` (a window_horizon).  (The horizon itself widens a window by the
+/// rounding's growth until then, ~1e-12 of the oscillation's amplitude for a horizon of 10³
+/// flights, and saves a division per wall.)
+template <class Real, class Bound>
+Real margin_time(const Real& horizon, Bound bound) {
+  using std::min;
+  return horizon < never ? horizon : min(horizon, bound());
+}
+
 /// Clips the window [start, end] to [0, horizon] into out[n]; returns the new count.
 template <class Real>
 int clip_window(int n, Window<Real>* out, const Real& start, const Real& end, const Real& margin, bool below,
@@ -359,21 +373,21 @@ struct PlaneGap {
   using Real = typename Q::Real;
   const Q& q;
   V n, a;
-  Real slack, n_a, B, nu, g_off, rate;
+  Real slack, n_a, B, nu, g_off;
+  Real tol0, tol1;  // the rounding level of f at τ is tol0 + tol1 τ
 
   PlaneGap(const Q& q_, const V& n_, const V& a_, const Real& slack_) : q(q_), n(n_), a(a_), slack(slack_) {
     using std::abs;
     n_a = abs(n.dot(q.flight.accel));
-    B = n_a / (q.flight.omega * q.flight.omega);
+    B = n_a * q.inv_omega * q.inv_omega;
     nu = n.dot(q.u);
     g_off = n.dot(q.g0 - a);
-    rate = abs(nu) + n_a / q.flight.omega;  // |f'| ≤ rate: the band covers f's change over the scan's step floor
+    tol0 = slack + 8 * eps<Real> * (abs(g_off) + B);
+    // |f'| ≤ |nu| + |n·F|/(mω): the band covers f's change over the scan's step floor.
+    tol1 = 8 * eps<Real> * (abs(nu) + n_a * q.inv_omega);
   }
   /// The rounding level of f at τ.
-  Real tolerance(const Real& tau) const {
-    using std::abs;
-    return slack + 8 * eps<Real> * (abs(g_off) + rate * tau + B);
-  }
+  Real tolerance(const Real& tau) const { return tol0 + tol1 * tau; }
   Sample<Real, V> sample(const Real& tau) const {
     const auto [x, v] = q.at(tau);
     return {n.dot(x - a), n.dot(v), n_a, never, x};
@@ -402,15 +416,16 @@ struct PlaneGap {
     using std::abs;
     using std::min;
     if (nu == 0) return clip_window(0, out, Real(0), horizon, Real(B + tolerance(horizon)), false, horizon);
-    const Real c0 = tolerance(Real(0)), c1 = 8 * eps<Real> * rate;
-    const Real m = B + tolerance(min(horizon, window_horizon(Real(0), Real(abs(g_off) + 2 * B), c0, c1, abs(nu))));
-    const Real from = (-2 * m - g_off) / nu, to = (2 * m - g_off) / nu;  // the guide at −2m and at +2m
+    const Real m = B + tolerance(margin_time(horizon, [&] {
+                     return window_horizon(Real(0), Real(abs(g_off) + 2 * B), tol0, tol1, abs(nu));
+                   }));
+    const Real inv_nu = 1 / nu, from = (-2 * m - g_off) * inv_nu, to = (2 * m - g_off) * inv_nu;  // the guide at ∓2m
     return nu > 0 ? clip_window(0, out, from, to, m, true, horizon) : clip_window(0, out, to, from, m, false, horizon);
   }
   /// +1 when f' > 0 throughout the window (f then crosses zero there at most once, upward), −1
   /// when f' < 0 (no collision), 0 when the bounds cannot tell: f' = nu + n·(F/mω) sin θ.
   int slope_sign(const Window<Real>&) const {
-    const Real wobble = n_a / q.flight.omega * (1 + 16 * eps<Real>) + 8 * eps<Real> * q.speed;
+    const Real wobble = n_a * q.inv_omega * (1 + 16 * eps<Real>) + 8 * eps<Real> * q.speed;
     return nu > wobble ? 1 : nu < -wobble ? -1 : 0;
   }
 };
@@ -423,12 +438,15 @@ struct SphereGap {
   using Real = typename Q::Real;
   const Q& q;
   V c;
-  Real r, sign, slack, scale;
+  Real r, sign;
+  Real tol0, tol1;  // the rounding level of f at τ is tol0 + tol1 τ
 
-  SphereGap(const Q& q_, const V& c_, const Real& r_, bool focusing, const Real& slack_)
-      : q(q_), c(c_), r(r_), sign(focusing ? 1 : -1), slack(slack_),
-        scale((q.s.x - c).template lpNorm<1>() + r) {}  // (a bound on |x − c| + r, without a square root)
-  Real tolerance(const Real& tau) const { return slack + 8 * eps<Real> * (scale + q.rounding_rate * tau + q.delta); }
+  SphereGap(const Q& q_, const V& c_, const Real& r_, bool focusing, const Real& slack)
+      : q(q_), c(c_), r(r_), sign(focusing ? 1 : -1),
+        // (|x − c|₁ + r bounds |x − c| + r without a square root.)
+        tol0(slack + 8 * eps<Real> * ((q.s.x - c).template lpNorm<1>() + r + q.delta)),
+        tol1(8 * eps<Real> * q.rounding_rate) {}
+  Real tolerance(const Real& tau) const { return tol0 + tol1 * tau; }
   Sample<Real, V> sample(const Real& tau) const {
     const auto [x, v] = q.at(tau);
     const V p = x - c;
@@ -483,8 +501,9 @@ struct SphereGap {
     // with the margin at the horizon (no smaller than any margin below).
     const Real reach = r + 2 * (q.delta + tolerance(horizon)), k_reach = cc - reach * reach;
     if (k_reach > 0 && (b >= 0 || b * b < uu * k_reach)) return 0;
-    const Real c0 = tolerance(Real(0)), c1 = 8 * eps<Real> * q.rounding_rate;
-    const Real m = q.delta + tolerance(min(horizon, window_horizon(Real(-b / uu), Real(r + 2 * q.delta), c0, c1, q.speed)));
+    const Real m = q.delta + tolerance(margin_time(horizon, [&] {
+                     return window_horizon(Real(-b * q.inv_uu), Real(r + 2 * q.delta), tol0, tol1, q.speed);
+                   }));
     // Times at which the guide is at distance ρ from c: the roots of uu τ² + 2bτ + cc − ρ²,
     // each from its stable form; false when it never is.
     auto at_distance = [&](const Real& rho, Real& t1, Real& t2) {
@@ -492,10 +511,10 @@ struct SphereGap {
       if (!(D >= 0)) return false;
       const Real root = sqrt(D);
       if (b <= 0) {
-        t2 = (root - b) / uu;
+        t2 = (root - b) * q.inv_uu;
         t1 = root - b > 0 ? Real(k / (root - b)) : Real(0);  // (0/0 for a tangent at τ = 0)
       } else {
-        t1 = -(b + root) / uu;
+        t1 = -(b + root) * q.inv_uu;
         t2 = -k / (b + root);
       }
       return true;
@@ -520,7 +539,7 @@ struct SphereGap {
     const V q0 = q.g0 - c;
     const Real qu0 = q0.dot(q.u);
     const Real qs = qu0 + q.uu * w.start, qe = qu0 + q.uu * w.end;
-    const Real wobble = q.accel_norm / q.flight.omega + 2 * q.delta * q.speed_bound / (inner - q.delta);
+    const Real wobble = q.accel_norm * q.inv_omega + 2 * q.delta * q.speed_bound / (inner - q.delta);
     // q̂·u > wobble throughout (outward) when qs/|q| > wobble, as |q| ≤ outer; < −wobble
     // (inward) likewise at the end; compared without dividing, with the rounding of q·u.
     const Real threshold = wobble * outer + 16 * eps<Real> * (q0.template lpNorm<1>() * q.u.template lpNorm<1>() +

@@ -117,7 +117,7 @@ struct BasicQuiveringWallFlight {
   /// y(t) = y_s + ẏ (t − t_s); x = y − d(t) (`near` as for the lab flight).
   State advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near = {}) const;
   /// ḋ, the walls' velocity at the state's time.
-  Vec2T<Real> wall_velocity(const State& s) const { return -accel / omega * s.sin_phase; }
+  Vec2T<Real> wall_velocity(const State& s) const { return -drive_amplitudes(accel, omega).second * s.sin_phase; }
   /// The lab flight's scan, seen from the walls: guiding velocity ẏ, velocity relative to the
   /// walls ẏ − ḋ.
   DrivenScan<BasicQuiveringWallFlight> scan_from(const State& s) const {

@@ -43,6 +43,16 @@ P advance_phase(const P& theta, const Real& omega, const Real& tau) {
   }
 }
 
+/// The amplitudes of the drive's oscillation in position and velocity, F/(mω²) and F/(mω),
+/// from `accel` = F/m, with one division: every driven flight, its scan and its advance use
+/// these same numbers, so that a root found by the scan is where the advance puts the particle.
+template <class V, class Real>
+std::pair<V, V> drive_amplitudes(const V& accel, const Real& omega) {
+  const Real inv = 1 / omega;
+  const V amp_v = accel * inv;
+  return {V(amp_v * inv), amp_v};
+}
+
 namespace detail {
 
 /// fdlibm's kernels (__kernel_sin, __kernel_cos): sin and cos on |x| ≤ π/4 to below one ulp.
