@@ -44,7 +44,7 @@ struct Sample {
 template <class Real, class S>
 Real polished_root(const Real& tau, const S& p, const Real& tol) {
   using std::max;
-  return max(Real(0), Real(tau - std::clamp(Real(p.f / p.df), Real(-tol / p.df), Real(tol / p.df))));
+  return max(Real(0), Real(tau - std::clamp(p.f, Real(-tol), tol) / p.df));
 }
 
 /// First τ in [0, tau_end] at which f crosses zero upward at a point in the wall's span.
@@ -215,6 +215,15 @@ template <class Real, class V>
   return tau0 + c / (root - b);                                                        // smaller root
 }
 
+/// The oscillation segment g ± amp_x, g = s.x + amp_x cos θ_s + u τ the guide at τ after the
+/// state s (guiding velocity u): it holds the position at τ, and the particle sweeps it once
+/// per period.  (Quiver::sweep; and the flights' own, which need no more of a Quiver.)
+template <class State, class V, class Real>
+std::pair<V, V> oscillation_segment(const State& s, const V& u, const V& amp_x, const Real& tau) {
+  const V g = s.x + amp_x * s.cos_phase + u * tau;
+  return {g - amp_x, g + amp_x};
+}
+
 /// A periodically driven flight from state s as a guiding line plus an oscillation of
 /// amplitude |F|/(mω²): x(τ) = g0 + u τ − (F/mω²) cos θ(τ), τ after the start.  `Flight` has
 /// `accel` (F/m, a 2-D or 3-D vector), `omega` and `Scalar`; `State` has x, v, phase and its
@@ -262,10 +271,7 @@ struct Quiver {
   Real period() const { return boost::math::constants::two_pi<Real>() / flight.omega; }
   /// The oscillation segment guide(τ) ± amp_x, which holds x(τ) and which the particle sweeps
   /// once per period.
-  std::pair<V, V> sweep(const Real& tau) const {
-    const V g = guide(tau);
-    return {g - amp_x, g + amp_x};
-  }
+  std::pair<V, V> sweep(const Real& tau) const { return oscillation_segment(s, u, amp_x, tau); }
   /// Position and velocity τ after the start (the closed form of advance()).  Within one
   /// flight ωτ stays moderate, so a phase in Real is accurate to ~1e-12 rad in double, which
   /// moves the particle by 1e-12 |F|/(mω²).  A creeping flight may last 10⁸ periods: its phase

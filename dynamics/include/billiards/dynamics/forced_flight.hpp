@@ -81,7 +81,10 @@ struct BasicPeriodicDriveFlight {
   DrivenScan<BasicPeriodicDriveFlight> scan_from(const State& s) const { return {{*this, s}}; }
   /// The oscillation segment guide ± F/(mω²) that holds the position at time t of the flight
   /// from s (no sine or cosine: the ensemble's every-flight check looks it up first).
-  std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const { return scan_from(s).quiver.sweep(t - s.t); }
+  std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const {
+    const auto [amp_x, amp_v] = drive_amplitudes(accel, omega);
+    return scan::oscillation_segment(s, Vec2T<Real>(s.v - amp_v * s.sin_phase), amp_x, Real(t - s.t));
+  }
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
     return scan_from(s).exit_time(w, t_end);
   }
@@ -124,7 +127,9 @@ struct BasicQuiveringWallFlight {
     return {{*this, s, s.v, s.v - wall_velocity(s)}};
   }
   /// As for the lab flight (the position relative to the walls lies on it).
-  std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const { return scan_from(s).quiver.sweep(t - s.t); }
+  std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const {
+    return scan::oscillation_segment(s, s.v, drive_amplitudes(accel, omega).first, Real(t - s.t));
+  }
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
     return scan_from(s).exit_time(w, t_end);
   }
