@@ -290,11 +290,16 @@ struct Quiver {
   };
   Motion motion(const Real& tau) const {
     if (tau == 0) return {s.x, v0, flight.accel * s.cos_phase, Real(s.phase), s.sin_phase, s.cos_phase};
-    const Real th = creeping ? Real(reduce_phase(advance_phase(s.phase, flight.omega, tau)))
-                             : Real(Real(s.phase) + flight.omega * tau);
+    const Real th = phase_at(tau);
     const auto [sn, c] = sin_cos(th);
-    return {g0 + u * tau - amp_x * c, u + amp_v * sn, flight.accel * c, th, sn, c};
+    return {position(tau, c), u + amp_v * sn, flight.accel * c, th, sn, c};
   }
+  /// The drive's phase θ τ after the start, as `motion` computes it.
+  Real phase_at(const Real& tau) const {
+    return creeping ? Real(reduce_phase(advance_phase(s.phase, flight.omega, tau))) : Real(Real(s.phase) + flight.omega * tau);
+  }
+  /// The position τ after the start, where cos θ = cos_th.
+  V position(const Real& tau, const Real& cos_th) const { return g0 + u * tau - amp_x * cos_th; }
 };
 
 /// The drive's phase θ (as computed in Real, not reduced) and its sine and cosine at one
@@ -304,17 +309,20 @@ template <class Real>
 struct PhaseSample {
   Real theta = never, sin = 0, cos = 1;
   bool known() const { return theta != never; }
-  /// Is the phase `precise` (in the phase type) within h_max = 1e-5 of θ, not reduced?  (A
+  /// Is the phase `precise` (in the phase type) within h_max = 1e-4 of θ, not reduced?  (A
   /// flight of 2²⁰ rad and more has its phase partly reduced by advance_phase.)
   bool near(const PhaseOf<Real>& precise) const {
     using std::abs;
-    return abs(Real(precise - PhaseOf<Real>(theta))) <= Real(1e-5);
+    return abs(Real(precise - PhaseOf<Real>(theta))) <= Real(1e-4);
   }
-  /// sin and cos of `precise` (θ + h, near θ): to second order in h, which corrects both the
-  /// polishing step and the rounding of θ in Real, exact to rounding for |h| ≤ h_max.
-  std::pair<Real, Real> at(const PhaseOf<Real>& precise) const {
-    const Real h = Real(precise - PhaseOf<Real>(theta));
-    return {sin + h * (cos - h / 2 * sin), cos - h * (sin + h / 2 * cos)};
+  /// sin and cos of `precise` (θ + h, near θ): to third order in h, which corrects the last
+  /// step of a root search and the rounding of θ in Real, exact to rounding for |h| ≤ h_max
+  /// (the remainder, h⁴/24, is below 5e-18).
+  std::pair<Real, Real> at(const PhaseOf<Real>& precise) const { return shifted(Real(precise - PhaseOf<Real>(theta))); }
+  /// sin and cos of θ + h.
+  std::pair<Real, Real> shifted(const Real& h) const {
+    const Real h2 = h * h / 2, h3 = h2 * h / 3;
+    return {sin + (h * cos - h2 * sin - h3 * cos), cos - (h * sin + h2 * cos - h3 * sin)};
   }
 };
 
@@ -400,8 +408,12 @@ struct PlaneGap {
   }
   Taylor<Real, V> taylor(const Real& tau) const {
     const auto m = q.motion(tau);
-    return {n.dot(m.x - a), n.dot(m.v), n.dot(m.a), m.x, tolerance(tau), m.th, m.sin_th, m.cos_th};
+    return {n.dot(m.x - a), n.dot(m.v), n.dot(m.a), m.x, band(tau), m.th, m.sin_th, m.cos_th};
   }
+  /// The level below which |f| (as `taylor` gives it) is within the rounding band at τ.
+  Real band(const Real& tau) const { return tolerance(tau); }
+  /// A bound on |f'''| = |n·F ω sin θ|/m.
+  Real jerk_bound(const Window<Real>&) const { return n_a * q.flight.omega; }
   /// First time ≥ τ at which the guide comes within the margin (B and rounding) of the wall, or
   /// +∞: before it f cannot vanish.
   Real window_start(const Real& tau) const {
@@ -474,9 +486,17 @@ struct SphereGap {
   Taylor<Real, V> taylor(const Real& tau) const {
     const auto m = q.motion(tau);
     const V p = m.x - c;
-    const Real tol = tolerance(tau);
     return {sign * (p.squaredNorm() - r * r), 2 * sign * p.dot(m.v), 2 * sign * (m.v.squaredNorm() + p.dot(m.a)), m.x,
-            2 * tol * (r - tol), m.th, m.sin_th, m.cos_th};
+            band(tau), m.th, m.sin_th, m.cos_th};
+  }
+  Real band(const Real& tau) const {
+    const Real tol = tolerance(tau);
+    return 2 * tol * (r - tol);
+  }
+  /// A bound on the third derivative of ±(|p|² − r²), 2(3 v·a + p·ȧ), in the window w, where
+  /// |p| ≤ r + 2m + δ, |v| ≤ V, |a| ≤ A and |ȧ| ≤ Aω.
+  Real jerk_bound(const Window<Real>& w) const {
+    return 2 * q.accel_norm * (3 * q.speed_bound + (r + 2 * w.margin + q.delta) * q.flight.omega);
   }
   Real window_start(const Real& tau) const {
     using std::max;
@@ -558,22 +578,37 @@ struct SphereGap {
 /// A root search that could not decide (see `monotone_crossing`).
 inline constexpr double undecided = -1;
 
-/// The collision in a window [start, end] where f' > 0 throughout (slope_sign = +1): f crosses
-/// zero there at most once, so Halley's iteration kept inside a bracket finds it without any
-/// risk of passing an earlier root (cubic convergence: ~2.5 evaluations where the certified
-/// scan, whose steps converge like Newton's, takes ~4).
-/// `below`: f(start) < 0 is known (the guide entered the window from f's negative side) and
+/// Is f(τ + h) certainly within the rounding band `band` there, h a step of the root search
+/// from the sample p at τ?  Then the sample at τ + h, which would cost a sine and a cosine, is
+/// not needed: f(τ + h) lies within J|h|³/6 of the quadratic model f + f'h + f''h²/2 (J
+/// bounds |f'''|), and after a Halley step close to the root both are far below the band.
+template <class S, class Real>
+bool certainly_in_band(const S& p, const Real& h, const Real& jerk, const Real& band) {
+  using std::abs;
+  const Real model = p.f + h * (p.df + h / 2 * p.d2f);
+  const Real rounding = 8 * eps<Real> * (abs(p.f) + abs(h * p.df) + abs(h * h * p.d2f));
+  return abs(model) + jerk * abs(h * h * h) / 6 + rounding <= band;
+}
+
+/// The collision in a window w where f' > 0 throughout (slope_sign = +1): f crosses zero there
+/// at most once, so Halley's iteration kept inside a bracket finds it without any risk of
+/// passing an earlier root (cubic convergence: ~2 samples where the certified scan, whose steps
+/// converge like Newton's, takes ~4).  A step that lands certainly within the rounding band
+/// (`certainly_in_band`) is the root without a sample there: the drive's phase there comes
+/// from the last sample's, to third order.
+/// `w.below`: f(start) < 0 is known (the guide entered the window from f's negative side) and
 /// start need not be sampled.  Returns the root, +∞ when f does not cross zero in the window or
 /// crosses outside the wall's span, or `undecided` when the iteration stalls; `*phase` keeps
-/// the drive's phase at the root's last sample.
+/// the drive's phase at the root.
 template <class Gap, class InSpan, class Real>
-Real monotone_crossing(const Gap& g, InSpan in_span, const Real& start, const Real& end, bool below,
-                       PhaseSample<Real>& phase) {
+Real monotone_crossing(const Gap& g, InSpan in_span, const Window<Real>& w, PhaseSample<Real>& phase) {
   using std::abs;
+  const Real start = w.start, end = w.end;
   Real lo = start, hi = end;  // f(lo) < 0; f(hi) > 0 once `bracketed`
   bool bracketed = false;
+  const Real jerk = g.jerk_bound(w);
   // The window runs from the guide at −2m to the guide at +2m: it crosses about half way.
-  Real tau = below ? Real(start + (end - start) / 2) : start;
+  Real tau = w.below ? Real(start + (end - start) / 2) : start;
   for (int k = 0; k < 100; ++k) {
     const auto p = g.taylor(tau);
     const Real tol = p.tol;
@@ -595,20 +630,28 @@ Real monotone_crossing(const Gap& g, InSpan in_span, const Real& start, const Re
     Real next = p.df > 0 && halley > 0 ? Real(tau - 2 * p.f * p.df / halley) : lo;
     if (!(next > lo && next < hi)) next = bracketed ? Real(lo + (hi - lo) / 2) : hi;  // hi = end until bracketed
     if (next == tau) return undecided;
+    if (certainly_in_band(p, Real(next - tau), jerk, g.band(next))) {
+      const Real th = g.q.phase_at(next), h = th - p.th;
+      if (abs(h) <= Real(1e-4)) {
+        const auto [sn, cs] = PhaseSample<Real>{p.th, p.sin_th, p.cos_th}.shifted(h);
+        if (!in_span(g.q.position(next, cs))) return never;
+        phase = {th, sn, cs};
+        return next;
+      }
+    }
     tau = next;
   }
   return undecided;
 }
 
-/// The first collision with one wall in its window [start, end]: +∞ when f' < 0 throughout,
-/// the monotone search when f' > 0 throughout (which keeps the drive's phase there in
-/// `*phase`), else the certified scan of the window.
+/// The first collision with one wall in its window [start, end], given the sign of f' there
+/// (`slope_sign`): +∞ when f' < 0 throughout, the monotone search when f' > 0 throughout (which
+/// keeps the drive's phase there in `*phase`), else the certified scan of the window.
 template <class Gap, class InSpan, class Real>
-Real crossing_in_window(const Gap& g, InSpan in_span, const Window<Real>& w, PhaseSample<Real>& phase) {
-  const int slope = g.slope_sign(w);
+Real crossing_in_window(const Gap& g, InSpan in_span, const Window<Real>& w, int slope, PhaseSample<Real>& phase) {
   if (slope < 0) return never;
   if (slope > 0) {
-    const Real tau = monotone_crossing(g, in_span, w.start, w.end, w.below, phase);
+    const Real tau = monotone_crossing(g, in_span, w, phase);
     if (tau != undecided) return tau;
   }
   auto sample = [&](const Real& tau) { return g.sample(tau); };
@@ -646,9 +689,12 @@ void first_hit_in_windows(int walls, Visit visit, Real& tau_best, int& best_wall
     visit(windows[k].wall, [&](const auto& gap, const auto& passes, const auto& in_span) {
       auto window = windows[k];
       window.end = min(window.end, tau_best);
-      if (passes(window.start, window.end)) return;
+      // The sign of f' first: it rules out the window the flight leaves its last wall through
+      // (one a flight) at half the cost of the span test.
+      const int slope = gap.slope_sign(window);
+      if (slope < 0 || passes(window.start, window.end)) return;
       PhaseSample<Real> sampled;
-      const Real tau = crossing_in_window(gap, in_span, window, sampled);
+      const Real tau = crossing_in_window(gap, in_span, window, slope, sampled);
       if (tau < tau_best) {
         tau_best = tau;
         best_wall = window.wall;
