@@ -165,3 +165,27 @@ TEST_CASE("the drive's sin_cos in double: within 1.5 ulp of 1 of MPFR's sine and
   // Beyond 2¹⁹π the function falls back on std's.
   CHECK(dynamics::sin_cos(3e6).first == std::sin(3e6));
 }
+
+TEST_CASE("reduce_phase in long double: within 2e-18 rad of MPFR's exact remainder by 2 pi, to 1e8 rad") {
+  // Below 2²⁴·2π the reduction subtracts k·2π in two parts instead of calling fmod; it must
+  // stay as accurate as fmod (which reduces by 2π rounded to 64 bits: off by k·2.5e-19), from
+  // phases near 0 to 10⁸ rad, and beside multiples of 2π where the result wraps.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> exponent(-3, 8);
+  std::vector<long double> thetas;
+  for (int i = 0; i < 20000; ++i) thetas.push_back(std::pow(10.0L, (long double)exponent(rng)) * (i % 7 ? 1 : -1));
+  for (long k : {1L, 2L, 1000L, 123456L, 16000000L}) {
+    const long double edge = (long double)(k * boost::math::constants::two_pi<Reference>());
+    for (long double t = std::nextafter(edge, 0.0L), n = 0; n < 3; t = std::nextafter(t, 1e30L), ++n) thetas.push_back(t);
+  }
+  const Reference two_pi = boost::math::constants::two_pi<Reference>();
+  double worst = 0;
+  for (const long double theta : thetas) {
+    const Reference exact = fmod(fmod(Reference(theta), two_pi) + two_pi, two_pi);
+    Reference d = abs(Reference(dynamics::reduce_phase(theta)) - exact);
+    if (two_pi - d < d) d = two_pi - d;  // (a result within rounding of 2π is 0)
+    worst = std::max(worst, double(d));
+  }
+  INFO("worst " << worst);
+  CHECK(worst <= 2e-18);
+}
