@@ -20,6 +20,8 @@ using PhaseOf = std::conditional_t<std::is_floating_point_v<Real>, long double, 
 /// double below 2²⁴·2π, θ − k·2π with 2π in two parts, the first of 40 bits so that k·2π₁ and
 /// the difference are exact: as accurate as fmod (more: fmod reduces by 2π rounded to 64
 /// bits), without the x87 remainder loop that sat on the chain from one collision to the next.
+/// k is truncated in double (an x87 truncation switches the rounding mode twice); it may be
+/// off by one when θ is within 1e-8 of a multiple of 2π, which the last step puts right.
 template <class P>
 P reduce_phase(P theta) {
   using std::abs;
@@ -28,9 +30,9 @@ P reduce_phase(P theta) {
   if constexpr (std::is_same_v<P, long double>) {
     if (abs(theta) < 0x1p24L * two_pi) {
       constexpr long double two_pi_1 = 0x1.921fb54442p+2L, two_pi_2 = 0xd18469898cc51702p-102L;
-      const long double k = static_cast<long double>(static_cast<long long>(theta * (1 / two_pi)));
+      const long double k = static_cast<long double>(static_cast<long long>(double(theta) * 0.15915494309189535));
       theta = (theta - k * two_pi_1) - k * two_pi_2;
-      return theta < 0 ? P(theta + two_pi) : theta;
+      return theta < 0 ? P(theta + two_pi) : theta >= two_pi ? P(theta - two_pi) : theta;
     }
   }
   theta = fmod(theta, two_pi);
