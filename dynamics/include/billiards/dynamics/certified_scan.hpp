@@ -308,21 +308,25 @@ struct Quiver {
 template <class Real>
 struct PhaseSample {
   Real theta = never, sin = 0, cos = 1;
+  /// The farthest shift `shifted` serves.
+  static constexpr double h_max = 0.05;
   bool known() const { return theta != never; }
-  /// Is the phase `precise` (in the phase type) within h_max = 1e-4 of θ, not reduced?  (A
-  /// flight of 2²⁰ rad and more has its phase partly reduced by advance_phase.)
+  /// Is the phase `precise` (in the phase type) within h_max of θ, not reduced?  (A flight of
+  /// 2²⁰ rad and more has its phase partly reduced by advance_phase.)
   bool near(const PhaseOf<Real>& precise) const {
     using std::abs;
-    return abs(Real(precise - PhaseOf<Real>(theta))) <= Real(1e-4);
+    return abs(Real(precise - PhaseOf<Real>(theta))) <= Real(h_max);
   }
-  /// sin and cos of `precise` (θ + h, near θ): to third order in h, which corrects the last
-  /// step of a root search and the rounding of θ in Real, exact to rounding for |h| ≤ h_max
-  /// (the remainder, h⁴/24, is below 5e-18).
+  /// sin and cos of `precise` (θ + h, near θ): which corrects the last step of a root search
+  /// and the rounding of θ in Real.
   std::pair<Real, Real> at(const PhaseOf<Real>& precise) const { return shifted(Real(precise - PhaseOf<Real>(theta))); }
-  /// sin and cos of θ + h.
+  /// sin and cos of θ + h, |h| ≤ h_max, by the angle-sum formulas, with sin h and cos h − 1 from
+  /// their Taylor series (remainders below h⁹/9! = 5.4e-18): a fifth of a sine and cosine.
   std::pair<Real, Real> shifted(const Real& h) const {
-    const Real h2 = h * h / 2, h3 = h2 * h / 3;
-    return {sin + (h * cos - h2 * sin - h3 * cos), cos - (h * sin + h2 * cos - h3 * sin)};
+    const Real z = h * h;
+    const Real sin_h = h * (1 - z / 6 * (1 - z / 20 * (1 - z / 42)));
+    const Real cos_h_1 = -z / 2 * (1 - z / 12 * (1 - z / 30 * (1 - z / 56)));
+    return {sin + (sin * cos_h_1 + cos * sin_h), cos + (cos * cos_h_1 - sin * sin_h)};
   }
 };
 
@@ -412,6 +416,9 @@ struct PlaneGap {
   }
   /// The level below which |f| (as `taylor` gives it) is within the rounding band at τ.
   Real band(const Real& tau) const { return tolerance(tau); }
+  /// The rounding of f itself at τ (the band without the walls' slack): a root known to that
+  /// level is as good as a polished one.
+  Real rounding(const Real& tau) const { return tolerance(tau) - slack; }
   /// A bound on |f'''| = |n·F ω sin θ|/m.
   Real jerk_bound(const Window<Real>&) const { return n_a * q.flight.omega; }
   /// First time ≥ τ at which the guide comes within the margin (B and rounding) of the wall, or
@@ -456,11 +463,11 @@ struct SphereGap {
   using Real = typename Q::Real;
   const Q& q;
   V c;
-  Real r, sign;
+  Real r, sign, slack;
   Real tol0, tol1;  // the rounding level of f at τ is tol0 + tol1 τ
 
-  SphereGap(const Q& q_, const V& c_, const Real& r_, bool focusing, const Real& slack)
-      : q(q_), c(c_), r(r_), sign(focusing ? 1 : -1),
+  SphereGap(const Q& q_, const V& c_, const Real& r_, bool focusing, const Real& slack_)
+      : q(q_), c(c_), r(r_), sign(focusing ? 1 : -1), slack(slack_),
         // (|x − c|₁ + r bounds |x − c| + r without a square root.)
         tol0(slack + 8 * eps<Real> * ((q.s.x - c).template lpNorm<1>() + r + q.delta)),
         tol1(8 * eps<Real> * q.rounding_rate) {}
@@ -493,6 +500,7 @@ struct SphereGap {
     const Real tol = tolerance(tau);
     return 2 * tol * (r - tol);
   }
+  Real rounding(const Real& tau) const { return 2 * r * (tolerance(tau) - slack); }
   /// A bound on the third derivative of ±(|p|² − r²), 2(3 v·a + p·ȧ), in the window w, where
   /// |p| ≤ r + 2m + δ, |v| ≤ V, |a| ≤ A and |ȧ| ≤ Aω.
   Real jerk_bound(const Window<Real>& w) const {
@@ -578,24 +586,24 @@ struct SphereGap {
 /// A root search that could not decide (see `monotone_crossing`).
 inline constexpr double undecided = -1;
 
-/// Is f(τ + h) certainly within the rounding band `band` there, h a step of the root search
-/// from the sample p at τ?  Then the sample at τ + h, which would cost a sine and a cosine, is
-/// not needed: f(τ + h) lies within J|h|³/6 of the quadratic model f + f'h + f''h²/2 (J
-/// bounds |f'''|), and after a Halley step close to the root both are far below the band.
+/// Is |f(τ + h)| certainly below `level`, h a step of the root search from the sample p at τ?
+/// Then the sample at τ + h, which would cost a sine and a cosine, is not needed: f(τ + h) lies
+/// within J|h|³/6 of the quadratic model f + f'h + f''h²/2 (J bounds |f'''|), and after a
+/// Halley step close to the root both are at the rounding of f.
 template <class S, class Real>
-bool certainly_in_band(const S& p, const Real& h, const Real& jerk, const Real& band) {
+bool certainly_below(const S& p, const Real& h, const Real& jerk, const Real& level) {
   using std::abs;
   const Real model = p.f + h * (p.df + h / 2 * p.d2f);
   const Real rounding = 8 * eps<Real> * (abs(p.f) + abs(h * p.df) + abs(h * h * p.d2f));
-  return abs(model) + jerk * abs(h * h * h) / 6 + rounding <= band;
+  return abs(model) + jerk * abs(h * h * h) / 6 + rounding <= level;
 }
 
 /// The collision in a window w where f' > 0 throughout (slope_sign = +1): f crosses zero there
 /// at most once, so Halley's iteration kept inside a bracket finds it without any risk of
 /// passing an earlier root (cubic convergence: ~2 samples where the certified scan, whose steps
-/// converge like Newton's, takes ~4).  A step that lands certainly within the rounding band
-/// (`certainly_in_band`) is the root without a sample there: the drive's phase there comes
-/// from the last sample's, to third order.
+/// converge like Newton's, takes ~4).  A step that lands where f is certainly at its own
+/// rounding (`certainly_below`: as close to the root as a polished sample) is the root without
+/// a sample there; the drive's phase there comes from the last sample's (PhaseSample::shifted).
 /// `w.below`: f(start) < 0 is known (the guide entered the window from f's negative side) and
 /// start need not be sampled.  Returns the root, +∞ when f does not cross zero in the window or
 /// crosses outside the wall's span, or `undecided` when the iteration stalls; `*phase` keeps
@@ -630,9 +638,9 @@ Real monotone_crossing(const Gap& g, InSpan in_span, const Window<Real>& w, Phas
     Real next = p.df > 0 && halley > 0 ? Real(tau - 2 * p.f * p.df / halley) : lo;
     if (!(next > lo && next < hi)) next = bracketed ? Real(lo + (hi - lo) / 2) : hi;  // hi = end until bracketed
     if (next == tau) return undecided;
-    if (certainly_in_band(p, Real(next - tau), jerk, g.band(next))) {
+    if (certainly_below(p, Real(next - tau), jerk, g.rounding(next))) {
       const Real th = g.q.phase_at(next), h = th - p.th;
-      if (abs(h) <= Real(1e-4)) {
+      if (abs(h) <= Real(PhaseSample<Real>::h_max)) {
         const auto [sn, cs] = PhaseSample<Real>{p.th, p.sin_th, p.cos_th}.shifted(h);
         if (!in_span(g.q.position(next, cs))) return never;
         phase = {th, sn, cs};
