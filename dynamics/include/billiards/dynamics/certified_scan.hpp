@@ -367,8 +367,7 @@ Real window_horizon(const Real& t0, const Real& d, const Real& c0, const Real& c
 /// flights, and saves a division per wall.)
 template <class Real, class Bound>
 Real margin_time(const Real& horizon, Bound bound) {
-  using std::min;
-  return horizon < never ? horizon : min(horizon, bound());
+  return horizon < never ? horizon : bound();
 }
 
 /// Clips the window [start, end] to [0, horizon] into out[n]; returns the new count.
