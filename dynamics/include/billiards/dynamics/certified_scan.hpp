@@ -224,6 +224,14 @@ std::pair<V, V> oscillation_segment(const State& s, const V& u, const V& amp_x, 
   return {g - amp_x, g + amp_x};
 }
 
+/// The guiding velocity of a driven flight from s in the lab picture, v − (F/mω) sin θ_s: the
+/// free particle's velocity about which the drive oscillates.
+template <class Flight, class State>
+auto guiding_velocity(const Flight& f, const State& s) {
+  using V = std::decay_t<decltype(s.v)>;
+  return V(s.v - drive_amplitudes(f.accel, f.omega).second * s.sin_phase);
+}
+
 /// A periodically driven flight from state s as a guiding line plus an oscillation of
 /// amplitude |F|/(mω²): x(τ) = g0 + u τ − (F/mω²) cos θ(τ), τ after the start.  `Flight` has
 /// `accel` (F/m, a 2-D or 3-D vector), `omega` and `Scalar`; `State` has x, v, phase and its
@@ -249,8 +257,7 @@ struct Quiver {
   Real rounding_rate;  // how fast the rounding of x(τ) grows with τ (see `at`)
 
   /// The lab picture: s.v is the particle's velocity between fixed walls.
-  Quiver(const Flight& f, const State& st)
-      : Quiver(f, st, st.v - drive_amplitudes(f.accel, f.omega).second * st.sin_phase, st.v) {}
+  Quiver(const Flight& f, const State& st) : Quiver(f, st, guiding_velocity(f, st), st.v) {}
   /// From the guiding velocity u (the free particle's, in the quivering-wall picture) and the
   /// velocity relative to the walls at the start; s.x is the position relative to the walls.
   Quiver(const Flight& f, const State& st, const V& guiding_velocity, const V& relative_velocity)

@@ -82,8 +82,8 @@ struct BasicPeriodicDriveFlight {
   /// The oscillation segment guide ± F/(mω²) that holds the position at time t of the flight
   /// from s (no sine or cosine: the ensemble's every-flight check looks it up first).
   std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const {
-    const auto [amp_x, amp_v] = drive_amplitudes(accel, omega);
-    return scan::oscillation_segment(s, Vec2T<Real>(s.v - amp_v * s.sin_phase), amp_x, Real(t - s.t));
+    return scan::oscillation_segment(s, scan::guiding_velocity(*this, s), drive_amplitudes(accel, omega).first,
+                                     Real(t - s.t));
   }
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
     return scan_from(s).exit_time(w, t_end);
