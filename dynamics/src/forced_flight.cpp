@@ -171,7 +171,7 @@ void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Re
 
 template <class Flight>
 auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_end) const -> FlightHit<Flight> {
-  FlightHit<Flight> best;
+  BasicHit<Real> best;
   best.t = t_end;
   scan::PhaseSample<Real> phase;  // the drive's phase sampled at the best root, if it was
   // Wall by wall for creeping guides (creep's jumps are interleaved with the windows of one
@@ -183,8 +183,9 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
   } else {
     first_hit_in_windows(table, quiver, best, phase);
   }
-  if (best.found()) best.state = quiver.flight.advance(quiver.s, best.t, phase);
-  return best;
+  if (!best.found()) return {best, {}};
+  // (The state made in place: a copy of one whose phase was just stored stalls on it.)
+  return {best, quiver.flight.advance(quiver.s, best.t, phase)};
 }
 
 template <class Flight>

@@ -71,23 +71,26 @@ struct FlightHit : BasicHit<typename Flight::Scalar> {
 template <class Flight>
 FlightHit<Flight> collision(const BasicTable<typename Flight::Scalar>& table, const Flight& flight,
                             const typename Flight::State& s, const typename Flight::Scalar& t_end = never) {
-  FlightHit<Flight> best;
   const auto scan = detail::scan_from(flight, s);
-  if constexpr (requires { scan.first_hit(table, t_end); }) {
-    best = scan.first_hit(table, t_end);  // (with the state at the hit)
-    if (!best.found()) return best;
-  } else {
-    if constexpr (std::is_same_v<Flight, FreeFlight>) {
-      if (table.grid()) static_cast<Hit&>(best) = detail::grid_collision(table, flight, s, t_end);
+  // (Made in place, not assigned: a driven state's copy just after its phase was stored
+  // stalls on that store.)
+  FlightHit<Flight> best = [&] {
+    if constexpr (requires { scan.first_hit(table, t_end); }) {
+      return scan.first_hit(table, t_end);  // (with the state at the hit)
+    } else {
+      FlightHit<Flight> hit;
+      if constexpr (std::is_same_v<Flight, FreeFlight>) {
+        if (table.grid()) static_cast<Hit&>(hit) = detail::grid_collision(table, flight, s, t_end);
+      }
+      if (!table.grid() || !std::is_same_v<Flight, FreeFlight>) {
+        hit.t = t_end;
+        for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, scan, w, hit);
+      }
+      if (hit.found()) hit.state = flight.advance(s, hit.t);
+      return hit;
     }
-    if (!table.grid() || !std::is_same_v<Flight, FreeFlight>) {
-      best.t = t_end;
-      for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, scan, w, best);
-    }
-    if (!best.found()) return best;
-    best.state = flight.advance(s, best.t);
-  }
-  std::tie(best.point, best.normal) = table.contact(best.wall, best.state.x);
+  }();
+  if (best.found()) std::tie(best.point, best.normal) = table.contact(best.wall, best.state.x);
   return best;
 }
 
