@@ -6,6 +6,7 @@
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/random.hpp"
 
+#include <boost/container/static_vector.hpp>
 #include <omp.h>
 
 #include <atomic>
@@ -133,10 +134,14 @@ struct EnsembleResult {
   std::vector<double> energies_at(std::size_t k, std::size_t m) const;
 };
 
-/// Particles a thread advances together.  Each collision depends on the previous one
-/// through a chain of square roots and divisions; interleaving independent particles lets
-/// the processor overlap their chains.  Each particle's arithmetic is unchanged.
-inline constexpr std::size_t interleaved_particles = 4;
+/// Particles a thread advances together.  A straight flight's collision is a short chain of
+/// dependent square roots and divisions: interleaving four independent particles lets the
+/// processor overlap their chains (the circle 2×, the clover 2%).  A driven collision, ~3 000
+/// instructions, is too long to overlap with another's, and interleaving only spreads the
+/// working set: one particle at a time is 3–4% faster (BENCHMARKS.md).  Each particle's
+/// arithmetic is the same either way.
+template <class Flight>
+inline constexpr std::size_t interleaved_particles = is_straight<Flight> ? 4 : 1;
 
 /// Runs particles [first, last) of an ensemble.  `initial(i)` gives particle i's state (it
 /// must depend on i only); `progress(done)` is called from one thread now and then.
@@ -145,13 +150,14 @@ void run_particles(const TableT& table, const Flight& flight, const Initial& ini
                    const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                    EnsembleResult& out, const std::function<void(std::size_t)>& progress = {}) {
   const std::size_t m = opt.record_times.size();
-  const std::size_t batches = (last - first + interleaved_particles - 1) / interleaved_particles;
+  constexpr std::size_t together = interleaved_particles<Flight>;
+  const std::size_t batches = (last - first + together - 1) / together;
   std::atomic<std::size_t> done{0};
 #pragma omp parallel for schedule(dynamic, 2) num_threads(threads)
   for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(batches); ++b) {
-    const std::size_t lo = first + std::size_t(b) * interleaved_particles;
-    const std::size_t hi = std::min(last, lo + interleaved_particles);
-    std::vector<Trajectory<Flight, TableT>> runs;
+    const std::size_t lo = first + std::size_t(b) * together;
+    const std::size_t hi = std::min(last, lo + together);
+    boost::container::static_vector<Trajectory<Flight, TableT>, together> runs;
     for (std::size_t i = lo; i < hi; ++i) runs.emplace_back(table, flight, initial(i), opt, &out.energies[i * m]);
     std::size_t active = runs.size();
     while (active > 0) {
