@@ -184,7 +184,7 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
     first_hit_in_windows(table, quiver, best, phase);
   }
   if (!best.found()) return {best, {}};
-  // (The state made in place: a copy of one whose phase was just stored stalls on it.)
+  // (The state made in place, as `collision` makes the hit: see there.)
   return {best, quiver.flight.advance(quiver.s, best.t, phase)};
 }
 
