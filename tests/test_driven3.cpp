@@ -93,7 +93,8 @@ TEST_CASE("3-D: zero drive is the free billiard, collision for collision") {
   dynamics3::State3 free = dynamics3::sample_microcanonical(table, 1.0, rng);
   DrivenState3 driven = flight.start(free);
   for (int k = 0; k < 12; ++k) {  // few enough that chaos has not amplified the roots' rounding
-    const auto a = table.collision(free), b = table.collision(flight, driven);
+    const auto a = table.collision(free);
+    const auto b = table.collision(flight, driven);
     REQUIRE(a.found());
     REQUIRE(b.found());
     CHECK(a.wall == b.wall);

@@ -174,7 +174,7 @@ Hit3 Table3::collision(const State3& s, double t_end) const {
   return best;
 }
 
-Hit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end) const {
+DrivenHit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end) const {
   using Quiver3 = dynamics::scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
   Hit3 best;
   best.t = t_end;
@@ -206,7 +206,7 @@ Hit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s
     };
     double tau_best = t_end - s.t;
     int wall = -1;
-    dynamics::scan::PhaseSample<double> phase;  // (the 3-D state is advanced anew at the hit)
+    dynamics::scan::PhaseSample<double> phase;  // (unused: the 3-D advance takes no sample)
     dynamics::scan::first_hit_in_windows(np + ns, visit, tau_best, wall, phase);
     if (wall >= 0) best.t = s.t + tau_best, best.wall = wall < np ? wall : wall + nt;
   }
@@ -216,10 +216,11 @@ Hit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s
     search_triangles(q.g0, q.u, q.delta + 2 * slack_, s.t, best,
                      [&](const TriangleWall& w, double t) { return flight.exit_time(s, w, t); });
   }
-  if (!best.found()) return best;
-  best.point = flight.advance(s, best.t).x;
-  best.normal = normal_at(best.wall, best.point);
-  return best;
+  if (!best.found()) return {best, {}};
+  DrivenHit3 hit{best, flight.advance(s, best.t)};
+  hit.point = hit.state.x;
+  hit.normal = normal_at(hit.wall, hit.point);
+  return hit;
 }
 
 Vec3 Table3::normal_at(int wall, const Vec3& x) const {
@@ -234,8 +235,8 @@ void bounce(State3& s, const Hit3& hit, double v2) {
   s.v *= std::sqrt(v2 / s.v.squaredNorm());
 }
 
-void bounce(const PeriodicDriveFlight3& flight, DrivenState3& s, const Hit3& hit) {
-  s = flight.advance(s, hit.t);
+void bounce(const PeriodicDriveFlight3&, DrivenState3& s, const DrivenHit3& hit) {
+  s = hit.state;
   s.x = hit.point;
   s.v -= 2 * s.v.dot(hit.normal) * hit.normal;
 }

@@ -20,6 +20,12 @@ struct Hit3 {
   bool found() const { return wall >= 0; }
 };
 
+/// A driven flight's hit with the flight's state there, before the bounce: `bounce` starts from
+/// it instead of advancing the flight a second time (as dynamics::FlightHit in 2-D).
+struct DrivenHit3 : Hit3 {
+  DrivenState3 state;
+};
+
 /// Median-split BVH over triangles; boxes are padded by the walls' slack so that a ray
 /// within rounding of a triangle is never culled by its box.
 class Bvh {
@@ -49,8 +55,8 @@ class Table3 {
   /// For a particle inside the region and t_end = never, found() == false means an escape.
   Hit3 collision(const State3& s, double t_end = never) const;
   /// The same for the paper's drive (the BVH walked along the guiding line, boxes grown by the
-  /// oscillation's amplitude |F|/(mω²)).
-  Hit3 collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end = never) const;
+  /// oscillation's amplitude |F|/(mω²)), with the flight's state at the hit.
+  DrivenHit3 collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end = never) const;
   /// Is x in the closed region (the independent point-in-region test of geometry3)?
   bool contains(const Vec3& x) const { return geometry3::contains(region_, x); }
   /// The walls, in the order of Hit3::wall.
@@ -80,15 +86,16 @@ class Table3 {
 /// rounding cannot accumulate into an energy drift).
 void bounce(State3& s, const Hit3& hit, double v2);
 
-/// Moves the driven particle to the hit and reflects it there (its energy changes in flight).
-void bounce(const PeriodicDriveFlight3& flight, DrivenState3& s, const Hit3& hit);
+/// Moves the driven particle to the hit (the state `collision` kept there) and reflects it
+/// (its energy changes in flight).
+void bounce(const PeriodicDriveFlight3& flight, DrivenState3& s, const DrivenHit3& hit);
 
 // The verbs of dynamics/collision.hpp for 3-D tables, so that the ensemble code
 // (dynamics/ensemble.hpp) runs 3-D flights unchanged.
 inline Hit3 collision(const Table3& table, const FreeFlight3&, const State3& s, double t_end = never) {
   return table.collision(s, t_end);
 }
-inline Hit3 collision(const Table3& table, const PeriodicDriveFlight3& flight, const DrivenState3& s,
+inline DrivenHit3 collision(const Table3& table, const PeriodicDriveFlight3& flight, const DrivenState3& s,
                       double t_end = never) {
   return table.collision(flight, s, t_end);
 }
