@@ -258,7 +258,7 @@ TEST_CASE("harmonic bowl in the circle from its centre: the closed-form exit tim
   const dynamics::Table table(shape.region);
   const double k = 0.4, Omega = std::sqrt(k);
   const FieldFlight flight(Force{}, harmonic(k), 1.0, table, 1e-11);
-  for (const Vec2 v0 : {Vec2(1, 0), Vec2(0.6, -0.8), Vec2(-3, 4)}) {
+  for (const Vec2& v0 : {Vec2(1, 0), Vec2(0.6, -0.8), Vec2(-3, 4)}) {
     dynamics::State free;
     free.x = Vec2(0, 0);
     free.v = v0;

@@ -154,20 +154,26 @@ TEST_CASE("the containment test's classified cells answer as the crossing count 
       }
       for (const double k : {-3.0, -0.5, 0.5, 3.0}) check(foot + k * table.tolerance() * n);
     }
-    // A segment certified inside (both ends in one inside cell) is inside all along.
-    int certified = 0, wrong = 0;
-    for (int i = 0; i < 20000; ++i) {
+    // A segment certified inside (both ends in one inside cell, or in neighbouring cells of an
+    // inside block) is inside all along: δ-sized segments, as a drive's oscillation segment
+    // at high ω, and segments up to 1.5 cells long, which cross into neighbouring cells.
+    const double cell = std::max(size.x() / table.classes().nx, size.y() / table.classes().ny);
+    int certified = 0, across = 0, wrong = 0;
+    for (int i = 0; i < 40000; ++i) {
       const Vec2 p = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
-      const double angle = 2 * geometry::pi * rng.uniform(), length = 0.002 * size.norm() * rng.uniform();  // (δ-sized, as a drive's oscillation segment)
+      const double longest = i % 2 ? 0.002 * size.norm() : 1.5 * cell;
+      const double angle = 2 * geometry::pi * rng.uniform(), length = longest * rng.uniform();
       const Vec2 q = p + length * Vec2(std::cos(angle), std::sin(angle));
       if (!table.certainly_contains(p, q)) continue;
       ++certified;
-      for (int k = 0; k <= 16; ++k) wrong += !table.contains(p + (q - p) * (k / 16.0), table.tolerance());
+      across += table.classes().cell_of(p) != table.classes().cell_of(q);
+      for (int k = 0; k <= 64; ++k) wrong += !table.contains(p + (q - p) * (k / 64.0), table.tolerance());
     }
     CHECK(disagreements == 0);
     CHECK(wrong == 0);
-    CHECK(certified > 5000);  // (most short segments in the region are certified at once)
-    UNSCOPED_INFO(name << ": " << certified << " of 20000 short segments certified inside");
+    CHECK(certified > 10000);  // (most short segments in the region are certified at once)
+    CHECK(across > 1000);      // (and many of them end in another cell)
+    UNSCOPED_INFO(name << ": " << certified << " of 40000 short segments certified inside, " << across << " across cells");
     UNSCOPED_INFO(name << ": " << classified / 2000.0 << "% of the box in classified cells");
     CHECK(classified > 100000);  // (the lookup answers for most points)
   }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <type_traits>
 
@@ -100,7 +101,7 @@ int BasicTable<Real>::Classes::cell_of(const Vec2& p) const {
 template <class Real>
 int BasicTable<Real>::Classes::of(const Vec2& p) const {
   const int i = cell_of(p);
-  return i < 0 ? mixed : cell[i];
+  return i < 0 ? int(mixed) : int(cell[i]);
 }
 
 template <class Real>
@@ -114,8 +115,17 @@ bool BasicTable<Real>::contains(const V& p) const {
 template <class Real>
 bool BasicTable<Real>::certainly_contains(const V& p, const V& q) const {
   if constexpr (std::is_floating_point_v<Real>) {
-    const int i = classes_.cell_of(p.template cast<double>());
-    return i >= 0 && i == classes_.cell_of(q.template cast<double>()) && classes_.cell[i] == Classes::inside;
+    const int i = classes_.cell_of(p.template cast<double>()), j = classes_.cell_of(q.template cast<double>());
+    if (i < 0 || j < 0) return false;
+    if (i == j) return classes_.cell[i] == Classes::inside;
+    // Cells next to each other, sideways or across a corner: the block of (two or four) cells
+    // they span is a rectangle, convex, and holds the segment.  (A drive's oscillation
+    // segment at ω = 10π is a third of a cell of the clover long: it crosses into a
+    // neighbouring cell at every other check.)
+    const int nx = classes_.nx, ix = i % nx, iy = i / nx, jx = j % nx, jy = j / nx;
+    if (std::abs(ix - jx) > 1 || std::abs(iy - jy) > 1) return false;
+    const auto inside = [&](int x, int y) { return classes_.cell[std::size_t(y) * nx + x] == Classes::inside; };
+    return inside(ix, iy) && inside(jx, jy) && inside(ix, jy) && inside(jx, iy);
   }
   return false;
 }

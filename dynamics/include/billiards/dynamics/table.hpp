@@ -40,7 +40,9 @@ class BasicTable {
   /// `classes` that no wall comes near.
   bool contains(const V& p) const;
   /// Is the whole segment [p, q] certainly inside?  True when both ends lie in one cell of
-  /// `classes` classified inside (a cell is convex); false when that cannot be told at once.
+  /// `classes` classified inside, or in neighbouring cells (by a side or a corner) whose block
+  /// is all inside (a cell, or a block of them, is convex); false when that cannot be told at
+  /// once.
   bool certainly_contains(const V& p, const V& q) const;
   /// The same with another tolerance (0: the closed region, to the rounding of the test).
   bool contains(const V& p, double tolerance) const;
