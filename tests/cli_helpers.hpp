@@ -10,9 +10,11 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 struct CommandResult {
   int status;
@@ -42,9 +44,24 @@ inline std::string read_file(const std::filesystem::path& p) {
   return s.str();
 }
 
+/// This test process's own temporary directory, removed when the process exits: two test runs
+/// on one machine (two checkouts, or CI beside a developer's run) never share a file.
+inline const std::filesystem::path& scratch_root() {
+  struct Root {
+    std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("billiards-test-" + std::to_string(::getpid()));
+    ~Root() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  };
+  static const Root root;
+  return root.dir;
+}
+
 /// A fresh temporary directory for one test.
 inline std::filesystem::path scratch(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("billiards-test-" + name);
+  const auto dir = scratch_root() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -3,6 +3,8 @@
 // γ_E, g1, g2 against hand-derived closed forms; the fluctuation–dissipation relation with
 // U ≠ 0; the Fokker–Planck equation driven by the quadrature coefficients, and the general
 // solver (Gaussian start, range, tabulation) against the analytic η and the short-time moments.
+#include "cli_helpers.hpp"
+
 #include "billiards/analysis.hpp"
 #include "billiards/dynamics/scene.hpp"
 #include "billiards/geometry/measures.hpp"
@@ -216,8 +218,7 @@ namespace {
 
 /// The paper's clover under F = 10 along (1, 1)/√2 at E0 = 1/2, with `extra` scene keys; loaded.
 dynamics::Scene clover_scene(const std::string& name, const std::string& omega, const std::string& extra) {
-  const auto dir = std::filesystem::temp_directory_path() / "billiards-test-analysis-fp-scenes";
-  std::filesystem::create_directories(dir);
+  static const auto dir = scratch("analysis-fp-scenes");
   const auto path = dir / (name + ".yaml");
   std::ofstream(path) << "shape: " BILLIARDS_SOURCE_DIR "/shapes/clover.yaml\nparameters: {F: 10, omega: " << omega
                       << "}\ninitial:\n  microcanonical: {energy: 1/2}\nforce:\n  periodic: {amplitude: "
