@@ -1,6 +1,8 @@
 // Free 3-D dynamics: the collision rate of every bundled shape equals v/λ with λ = 4V/S
 // (Santaló; exact in expectation for the microcanonical ensemble, whatever the dynamics),
 // no escapes, exact corner reflections, watertight triangle edges, grazing balls.
+#include "cli_helpers.hpp"
+
 #include "billiards/dynamics3/table3.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
@@ -101,13 +103,11 @@ TEST_CASE("free collision rate is v / lambda with lambda = 4V/S, and nothing esc
 }
 
 TEST_CASE("a triangulated cube with a ball inside: rate v / lambda, nothing escapes") {
-  const auto dir = std::filesystem::temp_directory_path() / ("billiards-dynamics3-ball-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const auto dir = scratch("dynamics3-ball");
   std::ofstream(dir / "cube.off") << cube_off;
   const auto shape = geometry3::parse_shape3(
       "dimension: 3\nboundary:\n  mesh: cube.off\nholes:\n  - ball: {center: [0.4, 0.5, 0.6], radius: 0.3}\n",
       (dir / "s.yaml").string());
-  std::filesystem::remove_all(dir);
   check_rate(shape, "cube mesh + ball", 300000);
 }
 
@@ -138,11 +138,9 @@ TEST_CASE("a flight into a corner of the cube comes back: v -> -v") {
 TEST_CASE("triangle meshes are watertight: rays through edges and vertices always hit") {
   // The cube as 12 triangles; rays from inside aimed exactly at the diagonals that split its
   // faces, at its edges and at its vertices.
-  const auto dir = std::filesystem::temp_directory_path() / ("billiards-dynamics3-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const auto dir = scratch("dynamics3-watertight");
   std::ofstream(dir / "cube.off") << cube_off;
   const auto shape = geometry3::parse_shape3("dimension: 3\nboundary:\n  mesh: cube.off\n", (dir / "s.yaml").string());
-  std::filesystem::remove_all(dir);
   const Table3 table(shape.region);
   dynamics::ParticleRng rng(3, 0);
   int shots = 0;

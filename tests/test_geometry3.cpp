@@ -90,13 +90,9 @@ TEST_CASE("the 1e5-triangle mesh: CGAL's V and S against independent sums and Mo
 
 namespace {
 
-/// A temporary folder with files, removed at the end of the test.
+/// A fresh temporary folder with files (the test process's scratch directory).
 struct Folder {
-  std::filesystem::path dir;
-  Folder() : dir(std::filesystem::temp_directory_path() / ("billiards-geometry3-" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(dir);
-  }
-  ~Folder() { std::filesystem::remove_all(dir); }
+  std::filesystem::path dir = scratch("geometry3");
   std::string write(const std::string& name, const std::string& text) const {
     std::ofstream(dir / name) << text;
     return (dir / name).string();
