@@ -4,6 +4,7 @@
 #pragma once
 
 #include "billiards/dynamics/collision.hpp"
+#include "billiards/dynamics/lockstep.hpp"
 #include "billiards/dynamics/random.hpp"
 
 #include <boost/container/static_vector.hpp>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -59,14 +61,20 @@ class Trajectory {
         v2_(s.v.squaredNorm()), t_final_(opt.record_times.empty() ? s.t : opt.record_times.back()) {}
 
   /// Advances to the next collision (recording the times passed on the way); false when done.
-  bool step() {
+  bool step() { return !done() && advance_to(collision(*table_, *flight_, s_, horizon())); }
+  /// Has the particle passed the last record time (or escaped)?
+  bool done() const { return k_ == opt_->record_times.size(); }
+  /// The end of the search for the next collision.  A straight flight costs the same whatever
+  /// the horizon: it is searched without one, so that a particle that meets no wall at all is
+  /// caught as an escape at once.
+  double horizon() const { return is_straight<Flight> ? never : t_final_; }
+  const typename Flight::State& state() const { return s_; }
+  /// `step` with the next collision, collision(table, flight, state(), horizon()), found by the
+  /// caller (run_particles, several particles in lock step).
+  template <class HitT>
+  bool advance_to(const HitT& hit) {
     const auto& times = opt_->record_times;
     const std::size_t n = times.size();
-    if (k_ == n) return false;
-    // A straight flight costs the same whatever the horizon: search without one, so that a
-    // particle that meets no wall at all is caught as an escape at once.
-    const double horizon = is_straight<Flight> ? never : t_final_;
-    const auto hit = collision(*table_, *flight_, s_, horizon);
     const double t_next = hit.found() ? hit.t : never;
     for (; k_ < n && times[k_] <= t_next; ++k_) {
       const auto r = flight_->advance(s_, times[k_]);
@@ -143,12 +151,66 @@ struct EnsembleResult {
 template <class Flight>
 inline constexpr std::size_t interleaved_particles = is_straight<Flight> ? 4 : 1;
 
+/// Runs particles [first, last) of a driven ensemble in a table that LockstepTable can search:
+/// each thread keeps lockstep::particles particles in flight and finds their collisions together,
+/// taking the next particle as soon as one is done.  Each particle's arithmetic is that of
+/// `simulate`, whatever its neighbours in the lanes.
+template <class Initial>
+void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, const PeriodicDriveFlight& flight,
+                     const Initial& initial, const RunOptions& opt, std::size_t first, std::size_t last, int threads,
+                     EnsembleResult& out, const std::function<void(std::size_t)>& progress) {
+  using Run = Trajectory<PeriodicDriveFlight, Table>;
+  constexpr int lanes = lockstep::particles;
+  const std::size_t m = opt.record_times.size();
+  std::atomic<std::size_t> next{first}, done{0};
+#pragma omp parallel num_threads(threads)
+  {
+    std::optional<Run> runs[lanes];
+    std::size_t index[lanes];
+    auto refill = [&](int i) {
+      runs[i].reset();
+      const std::size_t k = next++;
+      if (k < last) runs[i].emplace(table, flight, initial(k), opt, &out.energies[k * m]), index[i] = k;
+    };
+    // A particle done: its log kept, the next one in its lane.
+    auto finish = [&](int i) {
+      out.logs[index[i]] = runs[i]->log();
+      const std::size_t d = ++done;
+      if (progress && omp_get_thread_num() == 0) progress(d);
+      refill(i);
+    };
+    for (int i = 0; i < lanes; ++i) refill(i);
+    const DrivenState* states[lanes];
+    double horizons[lanes];
+    int lane_of[lanes];
+    FlightHit<PeriodicDriveFlight> hits[lanes];
+    for (;;) {
+      int n = 0;
+      for (int i = 0; i < lanes; ++i) {
+        while (runs[i] && runs[i]->done()) finish(i);  // (no record time after the start)
+        if (runs[i]) states[n] = &runs[i]->state(), horizons[n] = runs[i]->horizon(), lane_of[n++] = i;
+      }
+      if (n == 0) break;
+      lockstep_table.collisions(states, horizons, n, hits);
+      for (int j = 0; j < n; ++j) {
+        if (!runs[lane_of[j]]->advance_to(hits[j])) finish(lane_of[j]);
+      }
+    }
+  }
+  if (progress) progress(done);
+}
+
 /// Runs particles [first, last) of an ensemble.  `initial(i)` gives particle i's state (it
 /// must depend on i only); `progress(done)` is called from one thread now and then.
 template <class Flight, class TableT, class Initial>
 void run_particles(const TableT& table, const Flight& flight, const Initial& initial,
                    const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                    EnsembleResult& out, const std::function<void(std::size_t)>& progress = {}) {
+  if constexpr (std::is_same_v<Flight, PeriodicDriveFlight> && std::is_same_v<TableT, Table>) {
+    const LockstepTable lockstep_table(table, flight);
+    if (lockstep_table.usable())
+      return run_in_lockstep(lockstep_table, table, flight, initial, opt, first, last, threads, out, progress);
+  }
   const std::size_t m = opt.record_times.size();
   constexpr std::size_t together = interleaved_particles<Flight>;
   const std::size_t batches = (last - first + together - 1) / together;

@@ -1,0 +1,62 @@
+// The lock-step kernel's plain data (lockstep.hpp): what it reads and writes, and nothing it
+// could share with the rest of the program.  The kernel (src/lockstep_kernel.inc) includes only
+// this header, which has no inline function: compiled for AVX-512, the kernel must not define
+// an inline function that the linker could pick for the baseline program too.
+#pragma once
+
+namespace billiards::dynamics {
+
+namespace lockstep {
+
+/// Particles searched together (`groups` of `lanes`), and the most walls a table searched in
+/// lock step may have.
+inline constexpr int lanes = 8;
+inline constexpr int groups = 2;
+inline constexpr int particles = lanes * groups;
+inline constexpr int max_arcs = 8;
+
+/// A table's arcs, field by field (BasicArcWall's), padded to max_arcs.
+struct Arcs {
+  int count = 0;
+  double cx[max_arcs], cy[max_arcs], r[max_arcs], sign[max_arcs], slack[max_arcs];
+  double fx[max_arcs], fy[max_arcs], tx[max_arcs], ty[max_arcs];
+  long long full[max_arcs], half[max_arcs];  // −1 (true) or 0
+};
+
+/// The drive, as the flights' Quiver sees it.
+struct Drive {
+  double omega, accel_x, accel_y, amp_x_x, amp_x_y, amp_v_x, amp_v_y, accel_norm, inv_omega, delta;
+};
+
+/// The flights of up to `lanes` particles, lane by lane (the kernel derives the rest of each
+/// flight's scan::Quiver as its constructor does).
+struct Flights {
+  double sx[lanes], sy[lanes];                              // the state's position
+  double vx[lanes], vy[lanes];                              // and velocity
+  double phase[lanes], sin_phase[lanes], cos_phase[lanes];  // the drive's phase (in double)
+  double tau_end[lanes];                                    // the horizon, from the state's time
+  long long active[lanes];                                  // −1: search this lane
+};
+
+/// What the search found, lane by lane: the first hit's τ and wall (−1: none before tau_end),
+/// the drive's phase sampled there (theta = never: not sampled), or `handed_back`: the scalar
+/// search must decide this lane.
+struct Hits {
+  double tau[lanes];
+  int wall[lanes];
+  double theta[lanes], sin[lanes], cos[lanes];
+  bool handed_back[lanes];
+};
+
+/// The kernel (lockstep_kernel.inc), as compiled for each instruction set.
+using Kernel = void (*)(const Arcs& arcs, const Drive& drive, const Flights* flights, Hits* hits);
+namespace baseline {
+void first_hits(const Arcs& arcs, const Drive& drive, const Flights* flights, Hits* hits);
+}
+namespace avx512 {
+void first_hits(const Arcs& arcs, const Drive& drive, const Flights* flights, Hits* hits);
+}
+
+}  // namespace lockstep
+
+}  // namespace billiards::dynamics

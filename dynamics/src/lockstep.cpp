@@ -1,0 +1,100 @@
+#include "billiards/dynamics/lockstep.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+
+namespace billiards::dynamics {
+
+namespace lockstep {
+
+bool has_avx512() {
+#if defined(__x86_64__) && defined(__GNUC__)
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+#else
+  return false;
+#endif
+}
+
+Kernel chosen_kernel() {
+  static const Kernel k = []() -> Kernel {
+    const char* env = std::getenv("BILLIARDS_LOCKSTEP");
+    const std::string choice = env ? env : "auto";
+    if (choice == "scalar") return nullptr;
+    if (choice == "baseline") return &baseline::first_hits;
+    if (choice == "auto" || choice == "avx512") {
+      if (has_avx512()) return &avx512::first_hits;
+      if (choice == "auto") return nullptr;
+      throw std::runtime_error("BILLIARDS_LOCKSTEP=avx512: this processor has no AVX-512");
+    }
+    throw std::runtime_error("BILLIARDS_LOCKSTEP=" + choice + ": expected auto, avx512, baseline or scalar");
+  }();
+  return k;
+}
+
+}  // namespace lockstep
+
+LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flight, lockstep::Kernel kernel)
+    : table_(&table), flight_(&flight), kernel_(kernel) {
+  const auto& arcs = table.arcs();
+  usable_ = kernel && table.segments().empty() && !arcs.empty() && arcs.size() <= std::size_t(lockstep::max_arcs);
+  if (!usable_) return;
+  // The drive's numbers as every flight's Quiver computes them.
+  DrivenState rest;
+  rest.x = rest.v = Vec2::Zero();
+  const scan::Quiver<PeriodicDriveFlight, DrivenState> q(flight, rest);
+  drive_ = {flight.omega, flight.accel.x(), flight.accel.y(), q.amp_x.x(), q.amp_x.y(), q.amp_v.x(), q.amp_v.y(),
+            q.accel_norm, q.inv_omega, q.delta};
+  arcs_.count = int(arcs.size());
+  for (int i = 0; i < lockstep::max_arcs; ++i) {
+    const auto& w = arcs[std::size_t(std::min(i, arcs_.count - 1))];
+    arcs_.cx[i] = w.center.x(), arcs_.cy[i] = w.center.y(), arcs_.r[i] = w.radius, arcs_.sign[i] = w.focusing ? 1 : -1;
+    arcs_.slack[i] = w.slack, arcs_.fx[i] = w.from.x(), arcs_.fy[i] = w.from.y(), arcs_.tx[i] = w.to.x(),
+    arcs_.ty[i] = w.to.y();
+    arcs_.full[i] = w.full ? -1 : 0, arcs_.half[i] = w.ccw_extent <= geometry::pi ? -1 : 0;
+  }
+}
+
+void LockstepTable::collisions(const DrivenState* const* states, const double* t_end, int n,
+                               FlightHit<PeriodicDriveFlight>* hits) const {
+  lockstep::Flights flights[lockstep::groups]{};
+  bool any = false;
+  auto lane = [](auto& of, int i) -> auto& { return of[i / lockstep::lanes]; };
+  for (int i = 0; i < lockstep::particles; ++i) {
+    auto& in = lane(flights, i);
+    const int k = i % lockstep::lanes;
+    in.active[k] = 0;
+    if (i >= n) continue;
+    const DrivenState& s = *states[i];
+    if (!(t_end[i] < never)) continue;  // (without a horizon: the scalar search)
+    any = true;
+    in.active[k] = -1;
+    in.sx[k] = s.x.x(), in.sy[k] = s.x.y(), in.vx[k] = s.v.x(), in.vy[k] = s.v.y();
+    in.phase[k] = double(s.phase), in.sin_phase[k] = s.sin_phase, in.cos_phase[k] = s.cos_phase;
+    in.tau_end[k] = t_end[i] - s.t;
+  }
+  lockstep::Hits found[lockstep::groups];
+  if (any) kernel_(arcs_, drive_, flights, found);
+  for (int i = 0; i < n; ++i) {
+    const DrivenState& s = *states[i];
+    const auto& out = lane(found, i);
+    const int k = i % lockstep::lanes;
+    if (!lane(flights, i).active[k] || out.handed_back[k]) {
+      hits[i] = collision(*table_, *flight_, s, t_end[i]);
+      continue;
+    }
+    // As DrivenScan::first_hit and `collision` make the hit.
+    auto& hit = hits[i] = {};
+    hit.t = t_end[i];
+    hit.wall = out.wall[k];
+    if (!hit.found()) continue;
+    hit.t = s.t + out.tau[k];
+    hit.state = flight_->advance(s, hit.t, scan::PhaseSample<double>{out.theta[k], out.sin[k], out.cos[k]});
+    std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x);
+  }
+}
+
+}  // namespace billiards::dynamics
