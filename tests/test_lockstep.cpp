@@ -1,0 +1,181 @@
+// Driven collisions searched in lock step (lockstep.hpp) against the scalar search they must
+// reproduce bit for bit: batch by batch on states along real trajectories, with and without
+// horizons, and whole ensembles particle by particle.  The baseline kernel runs on any
+// processor; the AVX-512 kernel too where the processor has it.
+#include "billiards/dynamics/collision.hpp"
+#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics/lockstep.hpp"
+#include "billiards/geometry.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace billiards;
+using dynamics::DrivenState;
+using dynamics::PeriodicDriveFlight;
+using geometry::pi;
+using geometry::Vec2;
+
+namespace {
+
+struct NamedKernel {
+  const char* name;
+  dynamics::lockstep::Kernel kernel;
+};
+
+std::vector<NamedKernel> kernels() {
+  std::vector<NamedKernel> k{{"baseline", &dynamics::lockstep::baseline::first_hits}};
+  if (dynamics::lockstep::has_avx512()) k.push_back({"avx512", &dynamics::lockstep::avx512::first_hits});
+  return k;
+}
+
+dynamics::Table table_of(const std::string& shape) {
+  return dynamics::Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + shape + ".yaml").region);
+}
+
+// Bit for bit: the same doubles (and long double phase), not merely equal ones (+0 and −0 differ).
+template <class T>
+bool same_bits(const T& a, const T& b) {
+  if constexpr (std::is_same_v<T, long double>) return a == b && std::signbit(a) == std::signbit(b);
+  else return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+bool same_hit(const dynamics::FlightHit<PeriodicDriveFlight>& a, const dynamics::FlightHit<PeriodicDriveFlight>& b) {
+  if (a.wall != b.wall || !same_bits(a.t, b.t)) return false;
+  if (!a.found()) return true;
+  return same_bits(a.point.x(), b.point.x()) && same_bits(a.point.y(), b.point.y()) &&
+         same_bits(a.normal.x(), b.normal.x()) && same_bits(a.normal.y(), b.normal.y()) &&
+         same_bits(a.state.x.x(), b.state.x.x()) && same_bits(a.state.x.y(), b.state.x.y()) &&
+         same_bits(a.state.v.x(), b.state.v.x()) && same_bits(a.state.v.y(), b.state.v.y()) &&
+         same_bits(a.state.t, b.state.t) && same_bits(a.state.phase, b.state.phase) &&
+         same_bits(a.state.sin_phase, b.state.sin_phase) && same_bits(a.state.cos_phase, b.state.cos_phase);
+}
+
+// States the ensembles meet: fresh microcanonical starts, and states just after bounces (on a
+// wall, some after chattering re-collisions at low ω) along trajectories of several particles.
+std::vector<DrivenState> states_along_trajectories(const dynamics::Table& table, const PeriodicDriveFlight& flight,
+                                                   int particles, int bounces) {
+  std::vector<DrivenState> states;
+  for (int p = 0; p < particles; ++p) {
+    dynamics::ParticleRng rng(97, std::uint64_t(p));
+    DrivenState s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
+    states.push_back(s);
+    for (int k = 0; k < bounces; ++k) {
+      const auto hit = dynamics::collision(table, flight, s);
+      REQUIRE(hit.found());
+      dynamics::bounce(flight, s, hit);
+      states.push_back(s);
+    }
+  }
+  return states;
+}
+
+}  // namespace
+
+TEST_CASE("lock step: each batch's hits are the scalar search's, bit for bit") {
+  // Horizons: none (handed back to the scalar search), a run's record time, and horizons short
+  // enough to end many flights before their walls (found() false).
+  const double horizons[] = {dynamics::never, 20, 1e-3, 0.03};
+  for (const char* shape : {"clover", "circle", "annulus"})
+    for (const double omega : {4 * pi, 10 * pi, 40 * pi, 2560 * pi}) {
+      const auto table = table_of(shape);
+      const PeriodicDriveFlight flight{10 / std::sqrt(2.0) * Vec2(1, 1), omega, 0.3};
+      const auto states = states_along_trajectories(table, flight, 6, 60);
+      for (const auto& [name, kernel] : kernels()) {
+        const dynamics::LockstepTable lockstep(table, flight, kernel);
+        REQUIRE(lockstep.usable());
+        int compared = 0, found = 0, mismatches = 0;
+        // Batches of every size 1..16, the states taken in turn; each state's horizon cycles.
+        std::size_t next = 0;
+        for (int round = 0; next < states.size(); ++round) {
+          const int n = std::min<int>(1 + round % dynamics::lockstep::particles, int(states.size() - next));
+          const DrivenState* batch[dynamics::lockstep::particles];
+          double t_end[dynamics::lockstep::particles];
+          for (int i = 0; i < n; ++i) {
+            batch[i] = &states[next + std::size_t(i)];
+            const double h = horizons[(next + std::size_t(i)) % 4];
+            t_end[i] = h == dynamics::never ? h : batch[i]->t + h;
+          }
+          dynamics::FlightHit<PeriodicDriveFlight> hits[dynamics::lockstep::particles];
+          lockstep.collisions(batch, t_end, n, hits);
+          for (int i = 0; i < n; ++i) {
+            const auto expected = dynamics::collision(table, flight, *batch[i], t_end[i]);
+            ++compared;
+            found += expected.found();
+            if (!same_hit(hits[i], expected)) {
+              ++mismatches;
+              UNSCOPED_INFO(name << " kernel, " << shape << ", omega " << omega << ", state " << next + std::size_t(i)
+                                 << ": wall " << hits[i].wall << " at " << hits[i].t << ", scalar wall "
+                                 << expected.wall << " at " << expected.t);
+            }
+          }
+          next += std::size_t(n);
+        }
+        INFO(name << " kernel, " << shape << ", omega " << omega);
+        CHECK(mismatches == 0);
+        CHECK(compared == int(states.size()));
+        CHECK(found > compared / 2);        // most flights end on a wall...
+        CHECK(found < compared);            // ...and some at their short horizon
+      }
+    }
+}
+
+TEST_CASE("lock step: tables with segments or too many arcs are left to the scalar search") {
+  const PeriodicDriveFlight flight{Vec2(7, 7), 40 * pi, 0};
+  for (const char* shape : {"stadium", "sinai", "mushroom", "square"}) {
+    const auto table = table_of(shape);
+    CHECK_FALSE(dynamics::LockstepTable(table, flight, &dynamics::lockstep::baseline::first_hits).usable());
+  }
+  // Arcs only, but more than the kernel holds: a circle cut into max_arcs + 1 arcs.
+  geometry::Region2 circle;
+  const int arcs = dynamics::lockstep::max_arcs + 1;
+  for (int k = 0; k < arcs; ++k) {
+    geometry::Arc arc{Vec2(0, 0), 1, 2 * pi * k / arcs, 2 * pi / arcs, {}, {}};
+    arc.source = arc.point_at(arc.start);
+    arc.target = arc.point_at(arc.start + arc.sweep);
+    circle.outer.pieces.push_back(arc);
+    circle.outer.where.emplace_back();
+  }
+  const dynamics::Table many(circle);
+  REQUIRE(many.arcs().size() == std::size_t(arcs));
+  CHECK_FALSE(dynamics::LockstepTable(many, flight, &dynamics::lockstep::baseline::first_hits).usable());
+  // No kernel (a processor without AVX-512 and BILLIARDS_LOCKSTEP unset): not usable either.
+  CHECK_FALSE(dynamics::LockstepTable(table_of("clover"), flight, nullptr).usable());
+}
+
+TEST_CASE("lock step: ensembles equal simulate particle by particle, for 1 and 2 threads") {
+  const auto table = table_of("clover");
+  dynamics::RunOptions opt;
+  opt.record_times = {0, 0.5, 10, 200};
+  opt.verify_every_flight = true;
+  const std::size_t n = 40, m = opt.record_times.size();
+  for (const double omega : {10 * pi, 320 * pi}) {
+    const PeriodicDriveFlight flight{10 / std::sqrt(2.0) * Vec2(1, 1), omega, 0};
+    const auto initial = dynamics::microcanonical(table, flight, 1.0, 2021);
+    std::vector<double> expected(n * m);
+    std::vector<dynamics::ParticleLog> logs(n);
+    for (std::size_t i = 0; i < n; ++i) logs[i] = dynamics::simulate(table, flight, initial(i), opt, &expected[i * m]);
+    for (const auto& [name, kernel] : kernels())
+      for (const int threads : {1, 2}) {
+        INFO(name << " kernel, omega " << omega << ", " << threads << " threads");
+        const dynamics::LockstepTable lockstep(table, flight, kernel);
+        dynamics::EnsembleResult res;
+        res.energies.resize(n * m);
+        res.logs.resize(n);
+        dynamics::run_in_lockstep(lockstep, table, flight, initial, opt, 0, n, threads, res, {});
+        CHECK(std::memcmp(res.energies.data(), expected.data(), n * m * sizeof(double)) == 0);
+        std::uint64_t collisions = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          CHECK(res.logs[i].collisions == logs[i].collisions);
+          CHECK_FALSE(res.logs[i].escaped);
+          collisions += logs[i].collisions;
+        }
+        CHECK(collisions > 20 * n);  // (long enough runs that the lanes refill many times)
+      }
+  }
+}
