@@ -152,7 +152,7 @@ def test_arrays_own_the_cpp_buffers(source):
 
 def test_run_releases_the_gil(source):
     """A second Python thread ticks during the middle of a run only if the run released the GIL."""
-    scene = billiards.load_scene(source / "scenes" / "clover-driven.yaml", particles=2000, time=150)
+    scene = billiards.load_scene(source / "scenes" / "clover-driven.yaml", particles=2000, time=600)
     ticks, stop = [], threading.Event()
 
     def tick():
