@@ -60,39 +60,32 @@ LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flig
 
 void LockstepTable::collisions(const DrivenState* const* states, const double* t_end, int n,
                                FlightHit<PeriodicDriveFlight>* hits) const {
-  lockstep::Flights flights[lockstep::groups]{};
+  lockstep::Flights in{};
   bool any = false;
-  auto lane = [](auto& of, int i) -> auto& { return of[i / lockstep::lanes]; };
-  for (int i = 0; i < lockstep::particles; ++i) {
-    auto& in = lane(flights, i);
-    const int k = i % lockstep::lanes;
-    in.active[k] = 0;
-    if (i >= n) continue;
+  for (int i = 0; i < n; ++i) {
     const DrivenState& s = *states[i];
     if (!(t_end[i] < never)) continue;  // (without a horizon: the scalar search)
     any = true;
-    in.active[k] = -1;
-    in.sx[k] = s.x.x(), in.sy[k] = s.x.y(), in.vx[k] = s.v.x(), in.vy[k] = s.v.y();
-    in.phase[k] = double(s.phase), in.sin_phase[k] = s.sin_phase, in.cos_phase[k] = s.cos_phase;
-    in.tau_end[k] = t_end[i] - s.t;
+    in.active[i] = -1;
+    in.sx[i] = s.x.x(), in.sy[i] = s.x.y(), in.vx[i] = s.v.x(), in.vy[i] = s.v.y();
+    in.phase[i] = double(s.phase), in.sin_phase[i] = s.sin_phase, in.cos_phase[i] = s.cos_phase;
+    in.tau_end[i] = t_end[i] - s.t;
   }
-  lockstep::Hits found[lockstep::groups];
-  if (any) kernel_(arcs_, drive_, flights, found);
+  lockstep::Hits out;
+  if (any) kernel_(arcs_, drive_, in, out);
   for (int i = 0; i < n; ++i) {
     const DrivenState& s = *states[i];
-    const auto& out = lane(found, i);
-    const int k = i % lockstep::lanes;
-    if (!lane(flights, i).active[k] || out.handed_back[k]) {
+    if (!in.active[i] || out.handed_back[i]) {
       hits[i] = collision(*table_, *flight_, s, t_end[i]);
       continue;
     }
     // As DrivenScan::first_hit and `collision` make the hit.
     auto& hit = hits[i] = {};
     hit.t = t_end[i];
-    hit.wall = out.wall[k];
+    hit.wall = out.wall[i];
     if (!hit.found()) continue;
-    hit.t = s.t + out.tau[k];
-    hit.state = flight_->advance(s, hit.t, scan::PhaseSample<double>{out.theta[k], out.sin[k], out.cos[k]});
+    hit.t = s.t + out.tau[i];
+    hit.state = flight_->advance(s, hit.t, scan::PhaseSample<double>{out.theta[i], out.sin[i], out.cos[i]});
     std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x);
   }
 }

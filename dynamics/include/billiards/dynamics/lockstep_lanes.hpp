@@ -8,19 +8,22 @@ namespace billiards::dynamics {
 
 namespace lockstep {
 
-/// Particles searched together (`groups` of `lanes`), and the most walls a table searched in
-/// lock step may have.
-inline constexpr int lanes = 8;
-inline constexpr int groups = 2;
-inline constexpr int particles = lanes * groups;
+/// Particles searched together, one per lane, and the most walls a table searched in lock step
+/// may have.  (Sixteen lanes, two AVX-512 registers whose operations interleave, were 2-5%
+/// faster than two groups of eight taking rounds in turn; two groups of sixteen, no faster:
+/// BENCHMARKS.md.)
+inline constexpr int lanes = 16;
+inline constexpr int particles = lanes;
 inline constexpr int max_arcs = 8;
 
-/// A table's arcs, field by field (BasicArcWall's), padded to max_arcs.
-struct Arcs {
-  int count = 0;
+/// A table's arcs, field by field (BasicArcWall's), padded to max_arcs.  (These structs are
+/// aligned to the kernel's registers: the same kernel ran 1.4× slower on a build where the
+/// flights it loads happened to straddle cache lines.)
+struct alignas(64) Arcs {
   double cx[max_arcs], cy[max_arcs], r[max_arcs], sign[max_arcs], slack[max_arcs];
   double fx[max_arcs], fy[max_arcs], tx[max_arcs], ty[max_arcs];
   long long full[max_arcs], half[max_arcs];  // −1 (true) or 0
+  int count = 0;
 };
 
 /// The drive, as the flights' Quiver sees it.
@@ -30,7 +33,7 @@ struct Drive {
 
 /// The flights of up to `lanes` particles, lane by lane (the kernel derives the rest of each
 /// flight's scan::Quiver as its constructor does).
-struct Flights {
+struct alignas(64) Flights {
   double sx[lanes], sy[lanes];                              // the state's position
   double vx[lanes], vy[lanes];                              // and velocity
   double phase[lanes], sin_phase[lanes], cos_phase[lanes];  // the drive's phase (in double)
@@ -41,7 +44,7 @@ struct Flights {
 /// What the search found, lane by lane: the first hit's τ and wall (−1: none before tau_end),
 /// the drive's phase sampled there (theta = never: not sampled), or `handed_back`: the scalar
 /// search must decide this lane.
-struct Hits {
+struct alignas(64) Hits {
   double tau[lanes];
   int wall[lanes];
   double theta[lanes], sin[lanes], cos[lanes];
@@ -49,12 +52,12 @@ struct Hits {
 };
 
 /// The kernel (lockstep_kernel.inc), as compiled for each instruction set.
-using Kernel = void (*)(const Arcs& arcs, const Drive& drive, const Flights* flights, Hits* hits);
+using Kernel = void (*)(const Arcs& arcs, const Drive& drive, const Flights& flights, Hits& hits);
 namespace baseline {
-void first_hits(const Arcs& arcs, const Drive& drive, const Flights* flights, Hits* hits);
+void first_hits(const Arcs& arcs, const Drive& drive, const Flights& flights, Hits& hits);
 }
 namespace avx512 {
-void first_hits(const Arcs& arcs, const Drive& drive, const Flights* flights, Hits* hits);
+void first_hits(const Arcs& arcs, const Drive& drive, const Flights& flights, Hits& hits);
 }
 
 }  // namespace lockstep
