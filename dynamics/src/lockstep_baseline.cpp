@@ -1,3 +1,4 @@
-// The lock-step kernel for the x86-64 baseline (SSE2), which every processor runs.
+// The lock-step kernel without AVX-512 (plain x86-64, or any other processor), which every
+// processor runs: the tests compare it with the scalar search.
 #define LOCKSTEP_ISA baseline
 #include "lockstep_kernel.inc"

@@ -11,10 +11,10 @@
 // (a guide that creeps or stands still, a window where the sign of f' is uncertain, an
 // iteration that stalls, a phase beyond the fast sine) is handed back to the scalar search.
 //
-// The kernel is compiled twice, for AVX-512 (whose eight lanes of doubles hold the eight
-// particles in one register), chosen at run time on processors that have it, and for the x86-64
-// baseline, which the tests compare with the scalar search on any processor (too slow to use:
-// GCC emulates the eight lanes); it shares no inline function with the rest of the program, so
+// The kernel is compiled twice, for AVX-512 (two registers of eight doubles hold the sixteen
+// particles), chosen at run time on processors that have it, and without it (plain x86-64 or
+// any other processor), which the tests compare with the scalar search everywhere (too slow to
+// use: GCC emulates the lanes); it shares no inline function with the rest of the program, so
 // that no AVX-512 code can reach a processor without it.
 #pragma once
 
@@ -29,7 +29,7 @@ namespace lockstep {
 /// Does this processor have AVX-512 (F and DQ)?
 bool has_avx512();
 /// The kernel that ensembles use: AVX-512 where the processor has it, else none (the scalar
-/// search: the baseline kernel's eight lanes, emulated in SSE2, are 6× slower than it).  The
+/// search: the baseline kernel's lanes, emulated, are 7× slower than it).  The
 /// environment variable BILLIARDS_LOCKSTEP overrides the choice: auto, avx512, baseline (for
 /// tests) or scalar (for benchmarks).
 Kernel chosen_kernel();
