@@ -93,15 +93,15 @@ TEST_CASE("lock step: each batch's hits are the scalar search's, bit for bit") {
         // Batches of every size 1..16, the states taken in turn; each state's horizon cycles.
         std::size_t next = 0;
         for (int round = 0; next < states.size(); ++round) {
-          const int n = std::min<int>(1 + round % dynamics::lockstep::particles, int(states.size() - next));
-          const DrivenState* batch[dynamics::lockstep::particles];
-          double t_end[dynamics::lockstep::particles];
+          const int n = std::min<int>(1 + round % dynamics::lockstep::lanes, int(states.size() - next));
+          const DrivenState* batch[dynamics::lockstep::lanes];
+          double t_end[dynamics::lockstep::lanes];
           for (int i = 0; i < n; ++i) {
             batch[i] = &states[next + std::size_t(i)];
             const double h = horizons[(next + std::size_t(i)) % 4];
             t_end[i] = h == dynamics::never ? h : batch[i]->t + h;
           }
-          dynamics::FlightHit<PeriodicDriveFlight> hits[dynamics::lockstep::particles];
+          dynamics::FlightHit<PeriodicDriveFlight> hits[dynamics::lockstep::lanes];
           lockstep.collisions(batch, t_end, n, hits);
           for (int i = 0; i < n; ++i) {
             const auto expected = dynamics::collision(table, flight, *batch[i], t_end[i]);

@@ -152,7 +152,7 @@ template <class Flight>
 inline constexpr std::size_t interleaved_particles = is_straight<Flight> ? 4 : 1;
 
 /// Runs particles [first, last) of a driven ensemble in a table that LockstepTable can search:
-/// each thread keeps lockstep::particles particles in flight and finds their collisions together,
+/// each thread keeps lockstep::lanes particles in flight and finds their collisions together,
 /// taking the next particle as soon as one is done.  Each particle's arithmetic is that of
 /// `simulate`, whatever its neighbours in the lanes.
 template <class Initial>
@@ -160,7 +160,7 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
                      const Initial& initial, const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                      EnsembleResult& out, const std::function<void(std::size_t)>& progress) {
   using Run = Trajectory<PeriodicDriveFlight, Table>;
-  constexpr int lanes = lockstep::particles;
+  constexpr int lanes = lockstep::lanes;
   const std::size_t m = opt.record_times.size();
   std::atomic<std::size_t> next{first}, done{0};
 #pragma omp parallel num_threads(threads)

@@ -44,7 +44,7 @@ class LockstepTable {
   LockstepTable(const Table& table, const PeriodicDriveFlight& flight,
                 lockstep::Kernel kernel = lockstep::chosen_kernel());
   bool usable() const { return usable_; }
-  /// hits[i] = collision(table, flight, *states[i], t_end[i]) for i < n ≤ lockstep::particles: the
+  /// hits[i] = collision(table, flight, *states[i], t_end[i]) for i < n ≤ lockstep::lanes: the
   /// same hits, bit for bit.
   void collisions(const DrivenState* const* states, const double* t_end, int n,
                   FlightHit<PeriodicDriveFlight>* hits) const;

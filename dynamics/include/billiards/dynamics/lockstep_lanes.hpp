@@ -9,11 +9,10 @@ namespace billiards::dynamics {
 namespace lockstep {
 
 /// Particles searched together, one per lane, and the most walls a table searched in lock step
-/// may have.  (Sixteen lanes, two AVX-512 registers whose operations interleave, were 2-5%
-/// faster than two groups of eight taking rounds in turn; two groups of sixteen, no faster:
-/// BENCHMARKS.md.)
+/// may have.  (Sixteen lanes, two AVX-512 registers whose operations interleave, measured −2
+/// to +6% against two groups of eight taking rounds in turn, faster at three of the four ω;
+/// two groups of sixteen, no faster: BENCHMARKS.md.)
 inline constexpr int lanes = 16;
-inline constexpr int particles = lanes;
 inline constexpr int max_arcs = 8;
 
 /// A table's arcs, field by field (BasicArcWall's), padded to max_arcs.  (These structs are
