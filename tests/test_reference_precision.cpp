@@ -166,6 +166,25 @@ TEST_CASE("the drive's sin_cos in double: within 1.5 ulp of 1 of MPFR's sine and
   CHECK(dynamics::sin_cos(3e6).first == std::sin(3e6));
 }
 
+TEST_CASE("PhaseSample::shifted: sin and cos of theta + h within 2 ulp of 1 of MPFR's, for |h| up to h_max") {
+  // The root search's last step and the hit's state take their sine and cosine from the last
+  // sample's by the angle-sum formulas and the Taylor series of sin h and cos h − 1; a wrong
+  // coefficient of the series shows at |h| ~ h_max (1e-7 for the h⁷ term's).
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> phase(0, 7), shift(-dynamics::scan::PhaseSample<double>::h_max,
+                                                          dynamics::scan::PhaseSample<double>::h_max);
+  double worst = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double theta = phase(rng), h = i % 4 ? shift(rng) : std::copysign(0.05, shift(rng));
+    const auto [s0, c0] = dynamics::sin_cos(theta);
+    const auto [s, c] = dynamics::scan::PhaseSample<double>{theta, s0, c0}.shifted(h);
+    const Reference exact = Reference(theta) + Reference(h);
+    worst = std::max({worst, double(abs(Reference(s) - sin(exact))), double(abs(Reference(c) - cos(exact)))});
+  }
+  INFO("worst absolute error " << worst);
+  CHECK(worst <= 2 * DBL_EPSILON);
+}
+
 TEST_CASE("reduce_phase in long double: within 2e-18 rad of MPFR's exact remainder by 2 pi, to 1e8 rad") {
   // Below 2²⁴·2π the reduction subtracts k·2π in two parts instead of calling fmod; it must
   // stay as accurate as fmod (which reduces by 2π rounded to 64 bits: off by k·2.5e-19), from

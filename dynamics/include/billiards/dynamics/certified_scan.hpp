@@ -328,10 +328,14 @@ struct PhaseSample {
   std::pair<Real, Real> at(const PhaseOf<Real>& precise) const { return shifted(Real(precise - PhaseOf<Real>(theta))); }
   /// sin and cos of θ + h, |h| ≤ h_max, by the angle-sum formulas, with sin h and cos h − 1 from
   /// their Taylor series (remainders below h⁹/9! = 5.4e-18): a fifth of a sine and cosine.
+  /// The series' ratios are multiplied by their reciprocals, not divided: six divisions sat on
+  /// the way from a root to the hit's state (the reciprocals' rounding, ~1e-16 of terms below
+  /// z/6 ≈ 4e-4, is far below the remainder).
   std::pair<Real, Real> shifted(const Real& h) const {
     const Real z = h * h;
-    const Real sin_h = h * (1 - z / 6 * (1 - z / 20 * (1 - z / 42)));
-    const Real cos_h_1 = -z / 2 * (1 - z / 12 * (1 - z / 30 * (1 - z / 56)));
+    const Real sin_h = h * (1 - z * Real(Real(1) / 6) * (1 - z * Real(Real(1) / 20) * (1 - z * Real(Real(1) / 42))));
+    const Real cos_h_1 =
+        -z * Real(0.5) * (1 - z * Real(Real(1) / 12) * (1 - z * Real(Real(1) / 30) * (1 - z * Real(Real(1) / 56))));
     return {sin + (sin * cos_h_1 + cos * sin_h), cos + (cos * cos_h_1 - sin * sin_h)};
   }
 };
