@@ -38,7 +38,7 @@ dynamics::Table table_of(const std::string& shape) {
   return dynamics::Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + shape + ".yaml").region);
 }
 
-// Bit for bit: the same doubles (and long double phase), not merely equal ones (+0 and −0 differ).
+// Bit for bit: the same doubles (the phase's two among them), not merely equal ones (+0 and −0 differ).
 template <class T>
 bool same_bits(const T& a, const T& b) {
   if constexpr (std::is_same_v<T, long double>) return a == b && std::signbit(a) == std::signbit(b);

@@ -319,7 +319,7 @@ FieldFlight::FieldFlight(const Force& force, const std::optional<Potential>& pot
 FieldState FieldFlight::start(const BasicState<double>& s) const {
   FieldState f;
   static_cast<BasicState<double>&>(f) = s;
-  f.phase = reduce_phase((long double)model_->omega * s.t + model_->phase);
+  f.phase = reduce_phase(advance_phase(Phase(model_->phase), model_->omega, s.t));
   return f;
 }
 
@@ -342,7 +342,7 @@ FieldState FieldFlight::advance(const FieldState& s, double t) const {
   r.x = y.head<2>();
   r.v = y.tail<2>();
   r.t = t;
-  r.phase = reduce_phase(s.phase + (long double)model_->omega * tau);
+  r.phase = reduce_phase(advance_phase(s.phase, model_->omega, tau));
   r.step = next_step;
   return r;
 }

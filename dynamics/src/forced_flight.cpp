@@ -51,7 +51,7 @@ auto BasicPeriodicDriveFlight<Real>::start(const BasicState<Real>& s) const -> S
   using P = PhaseOf<Real>;
   State d;
   static_cast<BasicState<Real>&>(d) = s;
-  d.set_phase(P(omega) * P(s.t) + P(phase0));
+  d.set_phase(advance_phase(P(phase0), omega, s.t));
   return d;
 }
 

@@ -21,7 +21,7 @@ auto plane_clearance(const Quiver3& q, const Vec3& n, const Vec3& a) {
 
 }  // namespace
 
-void DrivenState3::set_phase(long double theta) {
+void DrivenState3::set_phase(const dynamics::Phase& theta) {
   phase = dynamics::reduce_phase(theta);
   std::tie(sin_phase, cos_phase) = dynamics::sin_cos(double(phase));
 }
@@ -29,7 +29,7 @@ void DrivenState3::set_phase(long double theta) {
 DrivenState3 PeriodicDriveFlight3::start(const State3& s) const {
   DrivenState3 d;
   static_cast<State3&>(d) = s;
-  d.set_phase(static_cast<long double>(omega) * s.t + phase0);
+  d.set_phase(dynamics::advance_phase(dynamics::Phase(phase0), omega, s.t));
   return d;
 }
 

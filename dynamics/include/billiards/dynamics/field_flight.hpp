@@ -56,7 +56,7 @@ struct FieldPath {
 /// State in a field: the state, the drive's phase, the step size to start the next flight
 /// with, and (once a collision search has run from it) the flight's dense output.
 struct FieldState : BasicState<double> {
-  long double phase = 0;  // θ = ω t + phase, reduced to [0, 2π)
+  Phase phase;            // θ = ω t + phase, reduced to [0, 2π)
   double step = 0;        // first trial step of the next flight (0: choose one)
   mutable std::shared_ptr<const FieldPath> path;
 };

@@ -12,18 +12,95 @@
 
 namespace billiards::dynamics {
 
-/// The drive's phase θ = ω t + phase is kept reduced to [0, 2π) in a type wider than double:
-/// long double for the hardware types, the reference type itself for MPFR.  A plain double
-/// ω t at ω = 2560π, t = 1e4 would keep only 8 digits.
-template <class Real>
-using PhaseOf = std::conditional_t<std::is_floating_point_v<Real>, long double, Real>;
+namespace detail {
 
-/// θ reduced to [0, 2π) (to rounding: a result within an ulp of 2π may stay there).  In long
+// Error-free transformations of doubles (Knuth, Dekker): the exact sum and product of two
+// doubles as a rounded result and its exact error.
+
+/// a + b = s + e exactly (Knuth's TwoSum).
+inline std::pair<double, double> two_sum(double a, double b) {
+  const double s = a + b, bb = s - a;
+  return {s, (a - (s - bb)) + (b - bb)};
+}
+/// a + b = s + e exactly when |a| ≥ |b| or a = 0 (Dekker's FastTwoSum).
+inline std::pair<double, double> fast_two_sum(double a, double b) {
+  const double s = a + b;
+  return {s, b - (s - a)};
+}
+/// a·b = p + e exactly for |a|, |b| < 2⁹⁹⁵ (Dekker's product on Veltkamp's halves).  Not a fused
+/// multiply-add: x86-64 without -mfma calls one from libm, and these are the same bits on any
+/// processor (the build forbids contraction: CMakeLists.txt).
+inline std::pair<double, double> two_prod(double a, double b) {
+  auto split = [](double x) {
+    const double c = 134217729.0 * x, high = c - (c - x);  // (2²⁷ + 1)·x
+    return std::pair{high, x - high};
+  };
+  const auto [ah, al] = split(a);
+  const auto [bh, bl] = split(b);
+  const double p = a * b;
+  return {p, ((ah * bh - p) + ah * bl + al * bh) + al * bl};
+}
+
+}  // namespace detail
+
+/// The drive's phase θ = ω t + phase of a flight in double: the unevaluated sum hi + lo of two
+/// doubles (106 bits), kept reduced to [0, 2π) between flights.  A plain double ω t at
+/// ω = 2560π, t = 1e4 would keep only 8 digits.  Its arithmetic is a dozen double operations:
+/// the long double it replaces put x87 arithmetic, and values moved between x87 and SSE
+/// registers through memory, on the chain from one collision to the next (~10% of a driven
+/// clover collision, BENCHMARKS.md).
+struct Phase {
+  double hi = 0, lo = 0;
+  constexpr Phase() = default;
+  constexpr Phase(double x) : hi(x) {}
+  constexpr Phase(double h, double l) : hi(h), lo(l) {}
+  /// θ rounded to double.
+  explicit constexpr operator double() const { return hi + lo; }
+};
+/// a − b, unnormalized (PhaseSample's shift from a sampled phase to the precise one).
+inline Phase operator-(const Phase& a, const Phase& b) {
+  const auto [s, e] = detail::two_sum(a.hi, -b.hi);
+  return {s, e + (a.lo - b.lo)};
+}
+
+/// The phase's type for a flight in Real: Phase for double, long double for long double, the
+/// type itself for MPFR.
+template <class Real>
+using PhaseOf = std::conditional_t<std::is_same_v<Real, double>, Phase,
+                                   std::conditional_t<std::is_floating_point_v<Real>, long double, Real>>;
+
+namespace detail {
+/// reduce_phase beyond 2²⁶·2π, in MPFR (phase.cpp): reached by flights of more than 6·10⁷
+/// periods and starts at ω t > 4·10⁸.
+Phase reduce_phase_mpfr(const Phase& theta);
+}  // namespace detail
+
+/// θ reduced to [0, 2π) (to rounding: a result within an ulp of 2π may stay there), within
+/// 1e-23 rad of the exact remainder of hi + lo below 2²⁶·2π: θ − k·2π with 2π = C1 + C2 + C3,
+/// C1 and C2 of 25 and 24 bits so that k·C1 and k·C2 are exact for |k| ≤ 2²⁶, and θ.hi − k·C1
+/// exact (both are multiples of θ.hi's ulp); C3 leaves 6e-33 of 2π out.  k, truncated, may be
+/// off by one beside a multiple of 2π: the reduction is then made again with the next k.
+/// Beyond, and for non-finite θ, MPFR.
+inline Phase reduce_phase(const Phase& theta) {
+  constexpr double C1 = 0x1.921fb5p+2, C2 = 0x1.110b46p-24, C3 = 0x1.1a62633145c07p-52;
+  constexpr double two_pi = 0x1.921fb54442d18p+2, inv_two_pi = 0x1.45f306dc9c883p-3;
+  if (!(std::abs(theta.hi) < 0x1p26 * two_pi)) return detail::reduce_phase_mpfr(theta);
+  auto minus_turns = [&theta](double k) {
+    const auto [s, e] = detail::two_sum(theta.hi - k * C1, -(k * C2));
+    const auto [hi, lo] = detail::fast_two_sum(s, e + (theta.lo - k * C3));
+    return Phase(hi, lo);
+  };
+  const double k = double(static_cast<long long>(theta.hi * inv_two_pi));
+  const Phase r = minus_turns(k);
+  return r.hi < 0 ? minus_turns(k - 1) : r.hi >= two_pi ? minus_turns(k + 1) : r;
+}
+
+/// θ reduced to [0, 2π) in long double (the flights in long double) and in MPFR.  In long
 /// double below 2²⁴·2π, θ − k·2π with 2π in two parts, the first of 40 bits so that k·2π₁ and
 /// the difference are exact: as accurate as fmod (more: fmod reduces by 2π rounded to 64
-/// bits), without the x87 remainder loop that sat on the chain from one collision to the next.
-/// k is truncated in double (an x87 truncation switches the rounding mode twice); it may be
-/// off by one when θ is within 1e-8 of a multiple of 2π, which the last step puts right.
+/// bits), without the x87 remainder loop.  k is truncated in double (an x87 truncation
+/// switches the rounding mode twice); it may be off by one when θ is within 1e-8 of a multiple
+/// of 2π, which the last step puts right.
 template <class P>
 P reduce_phase(P theta) {
   using std::abs;
@@ -41,12 +118,19 @@ P reduce_phase(P theta) {
   return theta < 0 ? P(theta + two_pi) : theta;
 }
 
-/// θ + ω τ (for set_phase to reduce), to the rounding of the phase type even when ωτ is 10¹⁰
-/// (a flight of 10⁸ periods, as a particle nearly at rest can make): ωτ in the phase type
-/// would keep only ~1e-10 rad there.  Beyond 2²⁰ rad, in hardware types, ωτ is split into its
-/// rounding p and the exact remainder (fma), and only p is reduced (exactly, by fmod); the
-/// representation error of 2π then shifts the phase by the same small multiple for every τ in
-/// a period, a slightly different ω rather than noise.
+/// θ + ω τ, not reduced (set_phase reduces it), exact in Phase: ω τ as its rounding and its
+/// exact error.  A flight of 10⁸ periods (as a particle nearly at rest can make) has ω τ ~ 10⁹.
+inline Phase advance_phase(const Phase& theta, double omega, double tau) {
+  const auto [p, e] = detail::two_prod(omega, tau);
+  const auto [s, t] = detail::two_sum(theta.hi, p);
+  return {s, t + (theta.lo + e)};
+}
+
+/// The same in long double, to its rounding even when ωτ is 10¹⁰: ωτ in long double would keep
+/// only ~1e-10 rad there.  Beyond 2²⁰ rad ωτ is split into its rounding p and the exact
+/// remainder (fma), and only p is reduced (exactly, by fmod); the representation error of 2π
+/// then shifts the phase by the same small multiple for every τ in a period, a slightly
+/// different ω rather than noise.  In MPFR, at its precision.
 template <class P, class Real>
 P advance_phase(const P& theta, const Real& omega, const Real& tau) {
   if constexpr (std::is_floating_point_v<Real>) {

@@ -8,12 +8,12 @@
 
 namespace billiards::dynamics3 {
 
-/// State under the drive: the drive's phase, reduced to [0, 2π) in long double, with its sine
+/// State under the drive: the drive's phase, reduced to [0, 2π) in two doubles, with its sine
 /// and cosine (as in 2-D, dynamics::BasicDrivenState).
 struct DrivenState3 : State3 {
-  long double phase = 0;
+  dynamics::Phase phase;
   double sin_phase = 0, cos_phase = 1;
-  void set_phase(long double theta);
+  void set_phase(const dynamics::Phase& theta);
 };
 
 /// The free flight in 3-D, for the ensemble code (dynamics/ensemble.hpp): straight lines,
