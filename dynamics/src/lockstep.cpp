@@ -68,7 +68,8 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
     any = true;
     in.active[i] = -1;
     in.sx[i] = s.x.x(), in.sy[i] = s.x.y(), in.vx[i] = s.v.x(), in.vy[i] = s.v.y();
-    in.phase[i] = double(s.phase), in.sin_phase[i] = s.sin_phase, in.cos_phase[i] = s.cos_phase;
+    in.t[i] = s.t, in.phase_hi[i] = s.phase.hi, in.phase_lo[i] = s.phase.lo;
+    in.sin_phase[i] = s.sin_phase, in.cos_phase[i] = s.cos_phase;
     in.tau_end[i] = t_end[i] - s.t;
   }
   lockstep::Hits out;
@@ -79,11 +80,20 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
       hits[i] = collision(*table_, *flight_, s, t_end[i]);
       continue;
     }
-    // As DrivenScan::first_hit and `collision` make the hit.
+    // As DrivenScan::first_hit and `collision` make the hit: the kernel made its state, or
+    // left it to be made here.
     auto& hit = hits[i] = {};
     hit.t = t_end[i];
     hit.wall = out.wall[i];
     if (!hit.found()) continue;
+    if (out.made[i]) {
+      hit.t = out.t[i];
+      auto& r = hit.state;
+      r.x = Vec2(out.x[i], out.y[i]), r.v = Vec2(out.vx[i], out.vy[i]), r.t = out.t[i];
+      r.phase = Phase(out.phase_hi[i], out.phase_lo[i]), r.sin_phase = out.sin_phase[i], r.cos_phase = out.cos_phase[i];
+      hit.point = Vec2(out.point_x[i], out.point_y[i]), hit.normal = Vec2(out.normal_x[i], out.normal_y[i]);
+      continue;
+    }
     hit.t = s.t + out.tau[i];
     hit.state = flight_->advance(s, hit.t, scan::PhaseSample<double>{out.theta[i], out.sin[i], out.cos[i]});
     std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x);

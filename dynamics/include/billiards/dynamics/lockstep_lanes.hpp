@@ -1,7 +1,8 @@
 // The lock-step kernel's plain data (lockstep.hpp): what it reads and writes, and nothing it
 // could share with the rest of the program.  The kernel (src/lockstep_kernel.inc) includes only
-// this header, which has no inline function: compiled for AVX-512, the kernel must not define
-// an inline function that the linker could pick for the baseline program too.
+// this header and phase_constants.hpp, which have no inline function: compiled for AVX-512, the
+// kernel must not define an inline function that the linker could pick for the baseline
+// program too.
 #pragma once
 
 namespace billiards::dynamics {
@@ -33,21 +34,29 @@ struct Drive {
 /// The flights of up to `lanes` particles, lane by lane (the kernel derives the rest of each
 /// flight's scan::Quiver as its constructor does).
 struct alignas(64) Flights {
-  double sx[lanes], sy[lanes];                              // the state's position
-  double vx[lanes], vy[lanes];                              // and velocity
-  double phase[lanes], sin_phase[lanes], cos_phase[lanes];  // the drive's phase (in double)
-  double tau_end[lanes];                                    // the horizon, from the state's time
-  long long active[lanes];                                  // −1: search this lane
+  double sx[lanes], sy[lanes];                                    // the state's position
+  double vx[lanes], vy[lanes];                                    // and velocity
+  double t[lanes];                                                // and time
+  double phase_hi[lanes], phase_lo[lanes];                        // the drive's phase (Phase)
+  double sin_phase[lanes], cos_phase[lanes];                      // and its sine and cosine
+  double tau_end[lanes];                                          // the horizon, from the state's time
+  long long active[lanes];                                        // −1: search this lane
 };
 
 /// What the search found, lane by lane: the first hit's τ and wall (−1: none before tau_end),
 /// the drive's phase sampled there (theta = never: not sampled), or `handed_back`: the scalar
-/// search must decide this lane.
+/// search must decide this lane.  Where `made`, also the flight's state at the hit (as
+/// PeriodicDriveFlight::advance makes it from the sample) and the contact (Table::contact);
+/// elsewhere the caller makes them.
 struct alignas(64) Hits {
   double tau[lanes];
   int wall[lanes];
   double theta[lanes], sin[lanes], cos[lanes];
   bool handed_back[lanes];
+  bool made[lanes];
+  double t[lanes], x[lanes], y[lanes], vx[lanes], vy[lanes];      // the state at the hit
+  double phase_hi[lanes], phase_lo[lanes], sin_phase[lanes], cos_phase[lanes];
+  double point_x[lanes], point_y[lanes], normal_x[lanes], normal_y[lanes];  // the contact
 };
 
 /// The kernel (lockstep_kernel.inc), as compiled for each instruction set.

@@ -2,6 +2,8 @@
 // its advance over long flights (internal to dynamics: the flights and the certified scan).
 #pragma once
 
+#include "billiards/dynamics/phase_constants.hpp"
+
 #include <boost/math/constants/constants.hpp>
 
 #include <bit>
@@ -32,7 +34,7 @@ inline std::pair<double, double> fast_two_sum(double a, double b) {
 /// processor (the build forbids contraction: CMakeLists.txt).
 inline std::pair<double, double> two_prod(double a, double b) {
   auto split = [](double x) {
-    const double c = 134217729.0 * x, high = c - (c - x);  // (2²⁷ + 1)·x
+    const double c = phase_constants::split * x, high = c - (c - x);
     return std::pair{high, x - high};
   };
   const auto [ah, al] = split(a);
@@ -76,15 +78,13 @@ Phase reduce_phase_mpfr(const Phase& theta);
 }  // namespace detail
 
 /// θ reduced to [0, 2π) (to rounding: a result within an ulp of 2π may stay there), within
-/// 1e-23 rad of the exact remainder of hi + lo below 2²⁶·2π: θ − k·2π with 2π = C1 + C2 + C3,
-/// C1 and C2 of 25 and 24 bits so that k·C1 and k·C2 are exact for |k| ≤ 2²⁶, and θ.hi − k·C1
-/// exact (both are multiples of θ.hi's ulp); C3 leaves 6e-33 of 2π out.  k, truncated, may be
-/// off by one beside a multiple of 2π: the reduction is then made again with the next k.
-/// Beyond, and for non-finite θ, MPFR.
+/// 1e-23 rad of the exact remainder of hi + lo below 2²⁶·2π: θ − k·2π with 2π = C1 + C2 + C3
+/// (phase_constants.hpp), k·C1 and k·C2 exact, and θ.hi − k·C1 exact (both are multiples of
+/// θ.hi's ulp).  k, truncated, may be off by one beside a multiple of 2π: the reduction is then
+/// made again with the next k.  Beyond, and for non-finite θ, MPFR.
 inline Phase reduce_phase(const Phase& theta) {
-  constexpr double C1 = 0x1.921fb5p+2, C2 = 0x1.110b46p-24, C3 = 0x1.1a62633145c07p-52;
-  constexpr double two_pi = 0x1.921fb54442d18p+2, inv_two_pi = 0x1.45f306dc9c883p-3;
-  if (!(std::abs(theta.hi) < 0x1p26 * two_pi)) return detail::reduce_phase_mpfr(theta);
+  using namespace phase_constants;
+  if (!(std::abs(theta.hi) < fast_limit)) return detail::reduce_phase_mpfr(theta);
   auto minus_turns = [&theta](double k) {
     const auto [s, e] = detail::two_sum(theta.hi - k * C1, -(k * C2));
     const auto [hi, lo] = detail::fast_two_sum(s, e + (theta.lo - k * C3));
