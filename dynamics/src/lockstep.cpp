@@ -48,6 +48,9 @@ LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flig
   const scan::Quiver<PeriodicDriveFlight, DrivenState> q(flight, rest);
   drive_ = {flight.omega, flight.accel.x(), flight.accel.y(), q.amp_x.x(), q.amp_x.y(), q.amp_v.x(), q.amp_v.y(),
             q.accel_norm, q.inv_omega, q.delta};
+  const auto& classes = table.classes();
+  cells_ = {classes.origin.x(), classes.origin.y(), classes.inverse_cell.x(), classes.inverse_cell.y(),
+            classes.nx,         classes.ny,         classes.cell.data()};
   arcs_.count = int(arcs.size());
   for (int i = 0; i < lockstep::max_arcs; ++i) {
     const auto& w = arcs[std::size_t(std::min(i, arcs_.count - 1))];
@@ -73,7 +76,7 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
     in.tau_end[i] = t_end[i] - s.t;
   }
   lockstep::Hits out;
-  if (any) kernel_(arcs_, drive_, in, out);
+  if (any) kernel_(arcs_, drive_, cells_, in, out);
   for (int i = 0; i < n; ++i) {
     const DrivenState& s = *states[i];
     if (!in.active[i] || out.handed_back[i]) {
@@ -86,6 +89,7 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
     hit.t = t_end[i];
     hit.wall = out.wall[i];
     if (!hit.found()) continue;
+    hit.midpoint_inside = out.midpoint_inside[i];
     if (out.made[i]) {
       hit.t = out.t[i];
       auto& r = hit.state;

@@ -63,6 +63,10 @@ Hit grid_collision(const Table& table, const FreeFlight& flight, const State& s,
 template <class Flight>
 struct FlightHit : BasicHit<typename Flight::Scalar> {
   typename Flight::State state;
+  /// Has the search that found the hit also certified the flight's position half way to it
+  /// inside the region (Table::certainly_contains, as Trajectory's every-flight check asks)?
+  /// The lock-step search does; false: not asked.
+  bool midpoint_inside = false;
 };
 
 /// The first wall the flight from `s` leaves the region through, before `t_end`.

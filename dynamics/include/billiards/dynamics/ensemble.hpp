@@ -83,7 +83,7 @@ class Trajectory {
     }
     if (k_ == n) return false;
     if (!hit.found()) return escape();  // no wall ahead of a particle that should meet one
-    if (opt_->verify_every_flight && !inside_at(0.5 * (s_.t + hit.t))) return escape();
+    if (opt_->verify_every_flight && !midpoint_certified(hit) && !inside_at(0.5 * (s_.t + hit.t))) return escape();
     zero_flights_ = hit.t == s_.t ? zero_flights_ + 1 : 0;
     if (zero_flights_ > opt_->max_zero_flights) return escape();
     bounce(*flight_, s_, hit);
@@ -94,6 +94,12 @@ class Trajectory {
   const ParticleLog& log() const { return log_; }
 
  private:
+  /// Did the search that found the hit certify the flight's midpoint inside already?
+  template <class HitT>
+  static bool midpoint_certified(const HitT& hit) {
+    if constexpr (requires { hit.midpoint_inside; }) return hit.midpoint_inside;
+    else return false;
+  }
   /// Is the particle inside the region at time t of its current flight?  A driven flight's
   /// position lies on its oscillation segment, which the table can often certify inside at a
   /// lookup, without advancing the flight (a phase reduction and a sine and cosine).

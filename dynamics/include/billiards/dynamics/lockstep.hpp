@@ -45,7 +45,8 @@ class LockstepTable {
                 lockstep::Kernel kernel = lockstep::chosen_kernel());
   bool usable() const { return usable_; }
   /// hits[i] = collision(table, flight, *states[i], t_end[i]) for i < n ≤ lockstep::lanes: the
-  /// same hits, bit for bit.
+  /// same hits, bit for bit; and each hit's `midpoint_inside`, Table::certainly_contains of the
+  /// flight's oscillation segment half way to the hit (Trajectory's every-flight check).
   void collisions(const DrivenState* const* states, const double* t_end, int n,
                   FlightHit<PeriodicDriveFlight>* hits) const;
 
@@ -55,6 +56,7 @@ class LockstepTable {
   lockstep::Kernel kernel_;
   lockstep::Arcs arcs_;
   lockstep::Drive drive_;
+  lockstep::Cells cells_;
   bool usable_ = false;
 };
 

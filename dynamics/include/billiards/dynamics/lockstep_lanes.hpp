@@ -26,6 +26,13 @@ struct alignas(64) Arcs {
   int count = 0;
 };
 
+/// The table's classified cells (BasicTable::Classes), for the flights' midpoint check.
+struct Cells {
+  double origin_x, origin_y, inverse_x, inverse_y;  // lower corner and 1 / cell size
+  int nx, ny;
+  const signed char* cell;  // Classes::cell: 1 inside
+};
+
 /// The drive, as the flights' Quiver sees it.
 struct Drive {
   double omega, accel_x, accel_y, amp_x_x, amp_x_y, amp_v_x, amp_v_y, accel_norm, inv_omega, delta;
@@ -57,15 +64,16 @@ struct alignas(64) Hits {
   double t[lanes], x[lanes], y[lanes], vx[lanes], vy[lanes];      // the state at the hit
   double phase_hi[lanes], phase_lo[lanes], sin_phase[lanes], cos_phase[lanes];
   double point_x[lanes], point_y[lanes], normal_x[lanes], normal_y[lanes];  // the contact
+  bool midpoint_inside[lanes];  // Table::certainly_contains of the oscillation segment at mid-flight
 };
 
 /// The kernel (lockstep_kernel.inc), as compiled for each instruction set.
-using Kernel = void (*)(const Arcs& arcs, const Drive& drive, const Flights& flights, Hits& hits);
+using Kernel = void (*)(const Arcs& arcs, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits);
 namespace baseline {
-void first_hits(const Arcs& arcs, const Drive& drive, const Flights& flights, Hits& hits);
+void first_hits(const Arcs& arcs, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits);
 }
 namespace avx512 {
-void first_hits(const Arcs& arcs, const Drive& drive, const Flights& flights, Hits& hits);
+void first_hits(const Arcs& arcs, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits);
 }
 
 }  // namespace lockstep
