@@ -44,21 +44,13 @@ double exact_cpu_per_particle(const Table& table, const PeriodicDriveFlight& fli
 
 using OdeState = std::array<double, 4>;  // x, y, vx, vy
 
-/// How far beyond wall w the point p is: its signed distance to the wall's line or circle.
-double beyond(const Table& table, int w, const Vec2& p) {
-  const std::size_t ns = table.segments().size();
-  if (std::size_t(w) < ns) {
-    const SegmentWall& s = table.segments()[w];
-    return s.normal.dot(p - s.a);
-  }
-  const ArcWall& a = table.arcs()[w - ns];
-  const double d = (p - a.center).norm() - a.radius;
-  return a.focusing ? d : -d;
+/// How far beyond wall w the point p is (the wall's signed gap).
+double beyond(const Table& table, const dynamics::WallId& w, const Vec2& p) {
+  return table.visit(w, [&](const auto& wall) { return wall.gap(p); });
 }
 
-bool within_span(const Table& table, int w, const Vec2& p) {
-  const std::size_t ns = table.segments().size();
-  return std::size_t(w) < ns ? table.segments()[w].within_span(p) : table.arcs()[w - ns].within_span(p);
+bool within_span(const Table& table, const dynamics::WallId& w, const Vec2& p) {
+  return table.visit(w, [&](const auto& wall) { return wall.within_span(p); });
 }
 
 Vec2 position(const OdeState& y) { return {y[0], y[1]}; }
@@ -67,20 +59,23 @@ Vec2 position(const OdeState& y) { return {y[0], y[1]}; }
 /// time found inside by bisection (so the particle is reflected on the table's side).
 template <class Dense>
 Bounce first_crossing(const Table& table, const Dense& dense, const OdeState& y0, const OdeState& y1) {
-  Bounce best{std::numeric_limits<double>::infinity(), -1, Vec2::Zero()};
+  Bounce best{std::numeric_limits<double>::infinity(), {}, Vec2::Zero()};
   const double t0 = dense.previous_time(), t1 = dense.current_time();
   OdeState y;
-  for (int w = 0, n = int(table.wall_count()); w < n; ++w) {
-    if (!(beyond(table, w, position(y0)) <= 0 && beyond(table, w, position(y1)) > 0)) continue;
-    double a = t0, b = t1;
-    while (b - a > 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, b)) {
-      const double m = 0.5 * (a + b);
-      dense.calc_state(m, y);
-      (beyond(table, w, position(y)) > 0 ? b : a) = m;
+  table.for_each_kind([&](const auto& walls, int kind) {
+    for (int i = 0, n = int(walls.size()); i < n; ++i) {
+      const dynamics::WallId w{kind, i};
+      if (!(beyond(table, w, position(y0)) <= 0 && beyond(table, w, position(y1)) > 0)) continue;
+      double a = t0, b = t1;
+      while (b - a > 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, b)) {
+        const double m = 0.5 * (a + b);
+        dense.calc_state(m, y);
+        (beyond(table, w, position(y)) > 0 ? b : a) = m;
+      }
+      dense.calc_state(a, y);
+      if (a < best.t && within_span(table, w, position(y))) best = {a, w, position(y)};
     }
-    dense.calc_state(a, y);
-    if (a < best.t && within_span(table, w, position(y))) best = {a, w, position(y)};
-  }
+  });
   return best;
 }
 
@@ -108,17 +103,25 @@ RealState advance(const PeriodicDriveFlight& f, const RealState& s, const Real& 
 }
 
 /// The wall's outward normal at x and how far beyond the wall x is, in MPFR.
-std::pair<std::array<Real, 2>, Real> wall_at(const Table& table, int w, const std::array<Real, 2>& x) {
-  const std::size_t ns = table.segments().size();
-  if (std::size_t(w) < ns) {
-    const SegmentWall& s = table.segments()[w];
-    const std::array<Real, 2> n{Real(s.normal.x()), Real(s.normal.y())};
-    return {n, n[0] * (x[0] - s.a.x()) + n[1] * (x[1] - s.a.y())};
-  }
-  const ArcWall& a = table.arcs()[w - ns];
-  const Real px = x[0] - a.center.x(), py = x[1] - a.center.y(), rho = sqrt(px * px + py * py);
-  const Real sign = a.focusing ? 1 : -1;
-  return {{sign * px / rho, sign * py / rho}, sign * (rho - a.radius)};
+std::pair<std::array<Real, 2>, Real> wall_at(const Table& table, const dynamics::WallId& w, const std::array<Real, 2>& x) {
+  return table.visit(w, [&](const auto& wall) -> std::pair<std::array<Real, 2>, Real> {
+    using Wall = std::decay_t<decltype(wall)>;
+    if constexpr (std::is_same_v<Wall, SegmentWall>) {
+      const std::array<Real, 2> n{Real(wall.normal.x()), Real(wall.normal.y())};
+      return {n, n[0] * (x[0] - wall.a.x()) + n[1] * (x[1] - wall.a.y())};
+    } else {
+      // A circle, or an ellipse as the unit circle of its map u = L (x − c) (walls.hpp).
+      const auto L = [&](int i, int j) {
+        if constexpr (std::is_same_v<Wall, ArcWall>) return Real(i == j ? 1 / wall.radius : 0.0);
+        else return Real(wall.map(i, j));
+      };
+      const Real px = x[0] - wall.center.x(), py = x[1] - wall.center.y();
+      const Real ux = L(0, 0) * px + L(0, 1) * py, uy = L(1, 0) * px + L(1, 1) * py, rho = sqrt(ux * ux + uy * uy);
+      const Real nx = L(0, 0) * ux + L(1, 0) * uy, ny = L(0, 1) * ux + L(1, 1) * uy, nn = sqrt(nx * nx + ny * ny);
+      const Real sign = wall.focusing ? 1 : -1;
+      return {{sign * nx / nn, sign * ny / nn}, sign * (rho - 1)};
+    }
+  });
 }
 
 Vec2 to_vec(const std::array<Real, 2>& x) { return {static_cast<double>(x[0]), static_cast<double>(x[1])}; }
@@ -165,7 +168,7 @@ Run odeint_run(const Table& table, const PeriodicDriveFlight& flight, const dyna
     const OdeState y0 = dense.current_state();
     dense.do_step(rhs);
     const Bounce hit = first_crossing(table, dense, y0, dense.current_state());
-    if (hit.wall < 0 || hit.t > t_end) continue;
+    if (!hit.wall.valid() || hit.t > t_end) continue;
     run.bounces.push_back(hit);
     dense.calc_state(hit.t, y);
     const Vec2 v = dynamics::reflect(Vec2(y[2], y[3]), table.normal_at(hit.wall, hit.x));

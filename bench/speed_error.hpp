@@ -22,7 +22,7 @@ using dynamics::Vec2;
 /// A collision as a method reports it: when, which wall, where.
 struct Bounce {
   double t;
-  int wall;
+  dynamics::WallId wall;
   Vec2 x;
 };
 

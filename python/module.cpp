@@ -272,7 +272,11 @@ py::dict trace(const Table& table, const Flight& flight, typename Flight::State 
       t.push_back(after.t);
       x.insert(x.end(), after.x.data(), after.x.data() + d);
       v.insert(v.end(), after.v.data(), after.v.data() + d);
-      walls.push_back(hit.wall);
+      // 2-D: the wall's position in the shape file (pieces counted loop by loop).
+      if constexpr (std::is_same_v<std::decay_t<decltype(hit.wall)>, dynamics::WallId>)
+        walls.push_back(table.piece_of(hit.wall));
+      else
+        walls.push_back(hit.wall);
     });
   }
   const auto rows = py::ssize_t(t.size());

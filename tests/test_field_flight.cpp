@@ -209,9 +209,10 @@ TEST_CASE("a static uniform force through the integrator reproduces the paraboli
       CHECK((got.point - want.point).norm() < 1e-8);
       // The per-wall search of the flight interface gives the same time for that wall.
       const auto st = field.start(s);
-      const double t_wall = table.is_arc(got.wall)
-                                ? field.exit_time(st, table.arcs()[got.wall - table.segments().size()], s.t + 50)
-                                : field.exit_time(st, table.segments()[got.wall], s.t + 50);
+      const double t_wall = table.visit(got.wall, [&](const auto& w) {
+        if constexpr (requires { field.exit_time(st, w, 0.0); }) return field.exit_time(st, w, s.t + 50);
+        else return -1.0;  // (no elliptic walls in this table)
+      });
       CHECK(t_wall == got.t);
       dynamics::bounce(exact, s, want);
     }

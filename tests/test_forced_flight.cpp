@@ -143,7 +143,6 @@ TEST_CASE("collisions in tables with partial walls equal a brute-force scan over
   for (const char* name : {"clover", "l-room"}) {
     const auto region = geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml").region;
     const dynamics::Table table(region);
-    const std::size_t ns = table.segments().size();
     int compared = 0;
     for (const double omega : {2 * pi, 40 * pi, 320 * pi}) {
       for (std::uint64_t k = 0; k < 8; ++k) {
@@ -156,22 +155,22 @@ TEST_CASE("collisions in tables with partial walls equal a brute-force scan over
           return reference<long double>(s0.x, s0.v, flight.accel, omega, flight.phase0, t).first;
         };
         // How far beyond wall w the point is, and whether it lies in the wall's span.
-        auto beyond = [&](int w, const std::array<long double, 2>& x) -> long double {
-          if (std::size_t(w) < ns) {
-            const auto& sw = table.segments()[w];
+        auto beyond = [&](const dynamics::WallId& w, const std::array<long double, 2>& x) -> long double {
+          if (w.kind == dynamics::wall_kind::segment) {
+            const auto& sw = table.segments()[w.index];
             return sw.normal.x() * (x[0] - sw.a.x()) + sw.normal.y() * (x[1] - sw.a.y());
           }
-          const auto& aw = table.arcs()[w - ns];
+          const auto& aw = table.arcs()[w.index];
           const long double r = std::hypot(x[0] - aw.center.x(), x[1] - aw.center.y()) - aw.radius;
           return aw.focusing ? r : -r;
         };
-        auto in_span = [&](int w, const std::array<long double, 2>& x) {
+        auto in_span = [&](const dynamics::WallId& w, const std::array<long double, 2>& x) {
           const Vec2 p{double(x[0]), double(x[1])};
-          return std::size_t(w) < ns ? table.segments()[w].within_span(p) : table.arcs()[w - ns].within_span(p);
+          return table.visit(w, [&](const auto& wall) { return wall.within_span(p); });
         };
         double expected = dynamics::never;
-        int expected_wall = -1;
-        for (int w = 0; w < int(table.wall_count()); ++w) {
+        dynamics::WallId expected_wall;
+        for (const auto& w : table.wall_ids()) {
           long double before = beyond(w, position(0));
           for (long n = 1; n * h <= std::min(t_max, expected); ++n) {
             const long double t = (long double)n * h, now = beyond(w, position(t));
@@ -191,8 +190,8 @@ TEST_CASE("collisions in tables with partial walls equal a brute-force scan over
         }
         const auto hit = dynamics::collision(table, flight, flight.start(s0), t_max);
         INFO(name << " omega " << omega << " case " << k);
-        CHECK(hit.wall == expected_wall);  // -1 on both sides: no wall within t_max
-        if (expected_wall >= 0) {
+        CHECK(hit.wall == expected_wall);  // invalid on both sides: no wall within t_max
+        if (expected_wall.valid()) {
           CHECK(std::abs(hit.t - expected) <= 1e-9);
           ++compared;
         }
@@ -220,7 +219,7 @@ TEST_CASE("the windows searched in time order find the collision the wall-by-wal
         const double t_end = k % 2 ? s.t + 20 : dynamics::never;
         dynamics::Hit by_wall;
         by_wall.t = t_end;
-        for (int w = 0; w < int(table.wall_count()); ++w) dynamics::detail::try_wall(table, flight, s, w, by_wall);
+        for (const auto& w : table.wall_ids()) dynamics::detail::try_wall(table, flight, s, w, by_wall);
         const auto hit = dynamics::collision(table, flight, s, t_end);
         // (Both polish the root to rounding: they agree to 5.5e-16 of 1 + t over these runs.)
         const bool same = hit.wall == by_wall.wall ? std::abs(hit.t - by_wall.t) <= 1e-14 * (1 + std::abs(hit.t))

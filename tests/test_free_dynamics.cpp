@@ -90,7 +90,7 @@ TEST_CASE("grid traversal finds exactly the hits of the brute-force search") {
     const auto fast = dynamics::collision(table, dynamics::FreeFlight{}, s);
     dynamics::Hit slow;
     slow.t = dynamics::never;
-    for (int w = 0; w < int(table.wall_count()); ++w)
+    for (const auto& w : table.wall_ids())
       dynamics::detail::try_wall(table, dynamics::FreeFlight{}, s, w, slow);
     REQUIRE(fast.wall == slow.wall);
     REQUIRE(fast.t == slow.t);

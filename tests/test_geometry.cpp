@@ -140,15 +140,16 @@ TEST_CASE("the containment test's classified cells answer as the crossing count 
       check(p);
       classified += table.classes().of(p) != dynamics::Table::Classes::mixed;
     }
+    const auto ids = table.wall_ids();
     for (int i = 0; i < 20000; ++i) {
       const Vec2 p = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
-      const int w = int(rng.uniform() * table.wall_count());
+      const auto w = ids[std::size_t(rng.uniform() * ids.size())];
       // The nearest point of wall w's line or circle, then off it along the normal.
       Vec2 foot, n;
-      if (table.is_arc(w)) {
-        std::tie(foot, n) = table.arcs()[w - table.segments().size()].contact(p);
+      if (w.kind == dynamics::wall_kind::arc) {
+        std::tie(foot, n) = table.arcs()[w.index].contact(p);
       } else {
-        const auto& seg = table.segments()[w];
+        const auto& seg = table.segments()[w.index];
         foot = seg.project(p);
         n = seg.normal;
       }

@@ -67,7 +67,7 @@ TEST_CASE("the same flight code in double, long double and MPFR: identical walls
     CHECK((d[k].point - pr).norm() < 1e-9);
     CHECK((Eigen::Vector2d(double(l[k].point.x()), double(l[k].point.y())) - pr).norm() < 1e-12);
     // The reference point lies on its wall to its own precision, far below double rounding.
-    const auto& w = rt.arcs()[std::size_t(r[k].wall) - rt.segments().size()];
+    const auto& w = rt.arcs()[r[k].wall.index];
     CHECK(double(abs((r[k].point - w.center).norm() - w.radius)) < 1e-35);
     // Time runs forward.
     CHECK(r[k].t > (k ? r[k - 1].t : Reference(0)));

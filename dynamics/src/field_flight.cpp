@@ -1,5 +1,7 @@
 #include "billiards/dynamics/field_flight.hpp"
 
+#include "billiards/geometry/input_error.hpp"
+
 #include "billiards/dynamics/certified_scan.hpp"
 
 #include <algorithm>
@@ -260,12 +262,12 @@ double integrate_and_scan(const FieldFlight::Model& m, const FieldState& s, doub
 
 /// The earliest crossing within a step over several walls' scans (ties: the lower index).
 template <class Scans>
-void earliest_in_step(Scans& scans, int first_index, const FieldPath::Step& step, double& tau, int& wall) {
+void earliest_in_step(Scans& scans, int kind, const FieldPath::Step& step, double& tau, WallId& wall) {
   for (std::size_t i = 0; i < scans.size(); ++i) {
     const double t = scans[i].advance_to(step, tau);
-    if (t != never && (wall < 0 || t < tau)) {
+    if (t != never && (!wall.valid() || t < tau)) {
       tau = t;
-      wall = first_index + int(i);
+      wall = {kind, int(i)};
     }
   }
 }
@@ -300,6 +302,11 @@ Vec4 FieldPath::at(double tau) const {
 
 FieldFlight::FieldFlight(const Force& force, const std::optional<Potential>& potential, double mass,
                          const Table& table, double tolerance) {
+  // (Its event search scans segments and circular arcs; a field is not affine-covariant, so
+  // elliptic arcs would need a scan of their own.)
+  if (!table.elliptic_arcs().empty())
+    throw InputError(table.source_of({wall_kind::elliptic_arc, 0}).file, table.source_of({wall_kind::elliptic_arc, 0}).line,
+                     "elliptic walls are not supported with a position-dependent field or a potential");
   auto m = std::make_shared<Model>();
   m->mass = mass;
   m->potential = potential;
@@ -348,7 +355,6 @@ FieldState FieldFlight::advance(const FieldState& s, double t) const {
 }
 
 Hit FieldFlight::first_exit(const Table& table, const FieldState& s, double t_end) const {
-  const std::size_t ns = table.segments().size();
   std::vector<WallScan<SegmentWall>> segments;
   std::vector<WallScan<ArcWall>> arcs;
   for (const auto& w : table.segments()) segments.emplace_back(w, *model_, s);
@@ -357,8 +363,8 @@ Hit FieldFlight::first_exit(const Table& table, const FieldState& s, double t_en
   Hit best;
   const double tau = integrate_and_scan(*model_, s, t_end - s.t, *path, [&](const FieldPath::Step& step, double tau1) {
     double t = tau1;
-    earliest_in_step(segments, 0, step, t, best.wall);
-    earliest_in_step(arcs, int(ns), step, t, best.wall);
+    earliest_in_step(segments, wall_kind::segment, step, t, best.wall);
+    earliest_in_step(arcs, wall_kind::arc, step, t, best.wall);
     return best.found() ? t : never;
   });
   s.path = path;

@@ -135,26 +135,27 @@ Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, c
   return tau == never ? Real(never) : Real(t0 + tau);
 }
 
-/// fn(wall, gap): wall number `wall` of the table and its gap seen from the flight q.
+/// fn(wall, gap): the segment or arc `id` of the table and its gap seen from the flight q.
 template <class Real, class Q, class Fn>
-void with_wall(const BasicTable<Real>& table, const Q& q, int wall, Fn&& fn) {
-  const std::size_t ns = table.segments().size();
-  if (std::size_t(wall) < ns) {
-    const auto& w = table.segments()[wall];
+void with_gap(const BasicTable<Real>& table, const Q& q, const WallId& id, Fn&& fn) {
+  if (id.kind == wall_kind::segment) {
+    const auto& w = table.segments()[id.index];
     fn(w, scan::PlaneGap<Q, Vec2T<Real>>(q, w.normal, w.a, w.slack));
   } else {
-    const auto& w = table.arcs()[wall - ns];
+    const auto& w = table.arcs()[id.index];
     fn(w, scan::SphereGap<Q, Vec2T<Real>>(q, w.center, w.radius, w.focusing, w.slack));
   }
 }
 
-/// The first hit of the flight q among the table's walls before best.t, into `best` (t and
-/// wall) and `phase`.
+/// The first hit of the flight q among the table's segments and arcs before best.t, into
+/// `best` (t and wall) and `phase`.
 template <class Real, class Q>
 void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Real>& best, scan::PhaseSample<Real>& phase) {
   Real tau_best = best.t - q.s.t;
+  const int segments = int(table.segments().size());
+  const auto id = [segments](int w) { return w < segments ? WallId{wall_kind::segment, w} : WallId{wall_kind::arc, w - segments}; };
   auto visit = [&](int w, auto&& fn) {
-    with_wall(table, q, w, [&](const auto& wall, const auto& gap) {
+    with_gap(table, q, id(w), [&](const auto& wall, const auto& gap) {
       // A window in which the particle cannot reach the wall's span is passed unsampled.
       auto passes = [&](const Real& start, const Real& end) {
         return !may_meet_span(wall, q.guide(start), q.guide(end), q.delta);
@@ -163,8 +164,12 @@ void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Re
       fn(gap, passes, in_span);
     });
   };
-  scan::first_hit_in_windows(int(table.wall_count()), visit, tau_best, best.wall, phase);
-  if (best.found()) best.t = q.s.t + tau_best;
+  int best_wall = -1;
+  scan::first_hit_in_windows(segments + int(table.arcs().size()), visit, tau_best, best_wall, phase);
+  if (best_wall >= 0) {
+    best.t = q.s.t + tau_best;
+    best.wall = id(best_wall);
+  }
 }
 
 }  // namespace
@@ -179,9 +184,19 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
   // best hit so far culls nearly all of them, while the windows of every wall along the guiding
   // line would be computed and sorted (wavy-1200: 25× slower).
   if (quiver.creeping || table.wall_count() > scan::windows_in_time_order_walls) {
-    for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, *this, w, best);
+    detail::try_every_wall(table, *this, best);
   } else {
     first_hit_in_windows(table, quiver, best, phase);
+    // Elliptic arcs, searched as unit arcs by the mapped flight, have no windows here.
+    const auto& ellipses = table.elliptic_arcs();
+    for (int i = 0, n = int(ellipses.size()); i < n; ++i) {
+      const Real t = exit_time(ellipses[i], best.t);
+      if (t < best.t) {
+        best.t = t;
+        best.wall = {wall_kind::elliptic_arc, i};
+        phase = {};
+      }
+    }
   }
   if (!best.found()) return {best, {}};
   // (The state made in place, as `collision` makes the hit: see there.)
@@ -196,6 +211,11 @@ auto DrivenScan<Flight>::exit_time(const BasicSegmentWall<Real>& w, const Real& 
 template <class Flight>
 auto DrivenScan<Flight>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) const -> Real {
   return driven_exit_time(quiver, w, quiver.s.t, t_end);
+}
+
+template <class Flight>
+auto DrivenScan<Flight>::exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const -> Real {
+  return elliptic_exit_time(quiver.flight, quiver.s, w, t_end);
 }
 
 // ---- Quivering walls ---------------------------------------------------------------------

@@ -40,7 +40,7 @@ Kernel chosen_kernel() {
 LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flight, lockstep::Kernel kernel)
     : table_(&table), flight_(&flight), kernel_(kernel) {
   const auto& arcs = table.arcs();
-  usable_ = kernel && table.segments().empty() && !arcs.empty() && arcs.size() <= std::size_t(lockstep::max_arcs);
+  usable_ = kernel && table.segments().empty() && table.elliptic_arcs().empty() && !arcs.empty() && arcs.size() <= std::size_t(lockstep::max_arcs);
   if (!usable_) return;
   // The drive's numbers as every flight's Quiver computes them.
   DrivenState rest;
@@ -87,8 +87,8 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
     // left it to be made here.
     auto& hit = hits[i] = {};
     hit.t = t_end[i];
-    hit.wall = out.wall[i];
-    if (!hit.found()) continue;
+    if (out.wall[i] < 0) continue;
+    hit.wall = {wall_kind::arc, out.wall[i]};
     hit.midpoint_inside = out.midpoint_inside[i];
     if (out.made[i]) {
       hit.t = out.t[i];

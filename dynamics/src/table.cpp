@@ -12,76 +12,24 @@
 
 namespace billiards::dynamics {
 
-namespace {
-
-/// Signed number of times the horizontal ray from p to +∞ crosses the segment upward
-/// (half-open rule on y, so a vertex is counted once).
-template <class Real>
-int crossings(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p) {
-  const bool up = w.a.y() <= p.y() && w.b.y() > p.y();
-  const bool down = w.b.y() <= p.y() && w.a.y() > p.y();
-  if (!up && !down) return 0;
-  const Real side = geometry::cross(Vec2T<Real>(w.b - w.a), Vec2T<Real>(p - w.a));  // > 0: p left of a→b
-  return up ? (side > 0 ? 1 : 0) : (side < 0 ? -1 : 0);
-}
-
-/// Same for an arc: the ray meets its circle at most twice.
-template <class Real>
-int crossings(const BasicArcWall<Real>& w, const Vec2T<Real>& p) {
-  using std::sqrt;
-  const Real dy = p.y() - w.center.y();
-  const Real h2 = w.radius2 - dy * dy;
-  if (h2 <= 0) return 0;
-  const Real h = sqrt(h2);
-  int n = 0;
-  for (const int sx : {-1, 1}) {
-    const Vec2T<Real> q(w.center.x() + sx * h, p.y());
-    if (q.x() <= p.x() || !w.within_span(q)) continue;
-    // Travelling counter-clockwise the circle goes up on its right half (sx = +1).
-    const int ccw_up = sx > 0 ? 1 : -1;
-    n += w.focusing ? ccw_up : -ccw_up;
-  }
-  return n;
-}
-
-/// Can p be within `tol` of the wall?  The distance to the supporting line or circle bounds
-/// the distance to the wall from below and needs no square root or division; false only when
-/// it exceeds 2 tol, far beyond the rounding of either distance.
-template <class Real>
-bool may_be_near(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p, double tol) {
-  using std::abs;
-  return abs(w.normal.dot(p - w.a)) <= 2 * tol;
-}
-template <class Real>
-bool may_be_near(const BasicArcWall<Real>& w, const Vec2T<Real>& p, double tol) {
-  using std::max;
-  const Real d2 = (p - w.center).squaredNorm();
-  const Real outer = w.radius + 2 * tol, inner = max(Real(0), Real(w.radius - 2 * tol));
-  return d2 <= outer * outer && d2 >= inner * inner;
-}
-
-}  // namespace
-
 template <class Real>
 BasicTable<Real>::BasicTable(const geometry::Region2& region) {
-  // Segments first, then arcs, each keeping its source line.
-  std::vector<std::pair<const geometry::Piece*, geometry::SourceRef>> arcs;
+  // Each piece becomes a wall of the kind built from it, keeping its source line.
   for (const geometry::Loop* loop : region.loops()) {
     for (std::size_t i = 0; i < loop->pieces.size(); ++i) {
-      const auto& p = loop->pieces[i];
-      if (const auto* s = std::get_if<geometry::Segment>(&p)) {
-        segments_.emplace_back(*s);
-        sources_.push_back(loop->where[i]);
-        boxes_.push_back(geometry::bounding_box(p));
-      } else {
-        arcs.emplace_back(&p, loop->where[i]);
-      }
+      std::visit([&](const auto& piece) {
+        for_each_kind([&]<class W>(const std::vector<W>&, int kind) {
+          if constexpr (std::is_constructible_v<W, decltype(piece)>) {
+            auto& walls = std::get<std::vector<W>>(walls_);
+            const WallId id{kind, int(walls.size())};
+            walls.emplace_back(piece);
+            sources_[kind].push_back(loop->where[i]);
+            pieces_[kind].push_back(int(count_++));
+            boxes_.emplace_back(id, geometry::bounding_box(loop->pieces[i]));
+          }
+        });
+      }, loop->pieces[i]);
     }
-  }
-  for (const auto& [p, src] : arcs) {
-    arcs_.emplace_back(std::get<geometry::Arc>(*p));
-    sources_.push_back(src);
-    boxes_.push_back(geometry::bounding_box(*p));
   }
   const auto m = geometry::measures_of(region);
   lo_ = m.bbox_lo;
@@ -153,34 +101,29 @@ void BasicTable<Real>::build_classes() {
 }
 
 template <class Real>
-auto BasicTable<Real>::normal_at(int wall, const V& p) const -> V {
-  return is_arc(wall) ? arcs_[wall - segments_.size()].normal_at(p) : segments_[wall].normal;
-}
-
-template <class Real>
 bool BasicTable<Real>::contains(const V& p, double tolerance) const {
   // (At tolerance 0 the bound leaves no room for rounding: the distance decides alone.)
   auto near = [&](const auto& w) {
-    return (tolerance == 0 || may_be_near(w, p, tolerance)) && w.distance(p) <= tolerance;
+    return (tolerance == 0 || w.may_be_near(p, tolerance)) && w.distance(p) <= tolerance;
   };
   int winding = 0;
-  for (const auto& w : segments_) {
-    if (near(w)) return true;
-    winding += crossings(w, p);
-  }
-  for (const auto& w : arcs_) {
-    if (near(w)) return true;
-    winding += crossings(w, p);
-  }
-  return winding != 0;
+  bool on_wall = false;
+  for_each_kind([&](const auto& walls, int) {
+    for (const auto& w : walls) {
+      on_wall = on_wall || near(w);
+      winding += w.crossings(p);
+    }
+  });
+  return on_wall || winding != 0;
 }
 
 template <class Real>
 Real BasicTable<Real>::wall_distance(const V& p) const {
   using std::min;
   Real d = std::numeric_limits<double>::infinity();
-  for (const auto& w : segments_) d = min(d, w.distance(p));
-  for (const auto& w : arcs_) d = min(d, w.distance(p));
+  for_each_kind([&](const auto& walls, int) {
+    for (const auto& w : walls) d = min(d, w.distance(p));
+  });
   return d;
 }
 
@@ -194,15 +137,15 @@ void BasicTable<Real>::build_grid() {
   grid_.ny = std::clamp(int(std::ceil(size.y() / h)), 1, 4096);
   grid_.cell = Vec2(size.x() / grid_.nx, size.y() / grid_.ny);
   grid_.origin = lo_;
-  std::vector<std::vector<int>> lists(std::size_t(grid_.nx) * grid_.ny);
-  for (std::size_t w = 0; w < boxes_.size(); ++w) {
+  std::vector<std::vector<WallId>> lists(std::size_t(grid_.nx) * grid_.ny);
+  for (const auto& [id, box] : boxes_) {
     // Pad by the span slack so walls touching a cell edge are listed on both sides.
     const Vec2 pad = Vec2::Constant(tolerance_);
-    const Vec2 a = (boxes_[w].first - pad - lo_).cwiseQuotient(grid_.cell);
-    const Vec2 b = (boxes_[w].second + pad - lo_).cwiseQuotient(grid_.cell);
+    const Vec2 a = (box.first - pad - lo_).cwiseQuotient(grid_.cell);
+    const Vec2 b = (box.second + pad - lo_).cwiseQuotient(grid_.cell);
     for (int i = std::max(0, int(a.x())); i <= std::min(grid_.nx - 1, int(b.x())); ++i)
       for (int j = std::max(0, int(a.y())); j <= std::min(grid_.ny - 1, int(b.y())); ++j)
-        lists[std::size_t(j) * grid_.nx + i].push_back(int(w));
+        lists[std::size_t(j) * grid_.nx + i].push_back(id);
   }
   grid_.start.push_back(0);
   for (const auto& l : lists) {

@@ -22,7 +22,10 @@ struct WallByWall {
   const typename Flight::State& s;
   template <class Wall>
   typename Flight::Scalar exit_time(const Wall& w, const typename Flight::Scalar& t_end) const {
-    return flight.exit_time(s, w, t_end);
+    if constexpr (std::is_same_v<Wall, BasicEllipticArcWall<typename Flight::Scalar>> && affine_covariant<Flight>)
+      return elliptic_exit_time(flight, s, w, t_end);
+    else
+      return flight.exit_time(s, w, t_end);
   }
 };
 
@@ -36,10 +39,8 @@ auto scan_from(const Flight& flight, const typename Flight::State& s) {
 
 /// Tries one wall; keeps it if it is hit before the best so far.
 template <class Real, class Scan>
-inline void try_wall(const BasicTable<Real>& table, const Scan& scan, int wall, BasicHit<Real>& best) {
-  const std::size_t ns = table.segments().size();
-  const auto t = std::size_t(wall) < ns ? scan.exit_time(table.segments()[wall], best.t)
-                                        : scan.exit_time(table.arcs()[wall - ns], best.t);
+inline void try_wall(const BasicTable<Real>& table, const Scan& scan, const WallId& wall, BasicHit<Real>& best) {
+  const auto t = table.visit(wall, [&](const auto& w) { return scan.exit_time(w, best.t); });
   if (t < best.t) {
     best.t = t;
     best.wall = wall;
@@ -47,8 +48,22 @@ inline void try_wall(const BasicTable<Real>& table, const Scan& scan, int wall, 
 }
 template <class Flight>
 inline void try_wall(const BasicTable<typename Flight::Scalar>& table, const Flight& flight,
-                     const typename Flight::State& s, int wall, BasicHit<typename Flight::Scalar>& best) {
+                     const typename Flight::State& s, const WallId& wall, BasicHit<typename Flight::Scalar>& best) {
   try_wall(table, WallByWall<Flight>{flight, s}, wall, best);
+}
+
+/// Tries every wall of the table, kind by kind.
+template <class Real, class Scan>
+inline void try_every_wall(const BasicTable<Real>& table, const Scan& scan, BasicHit<Real>& best) {
+  table.for_each_kind([&](const auto& walls, int kind) {
+    for (int i = 0, n = int(walls.size()); i < n; ++i) {
+      const auto t = scan.exit_time(walls[i], best.t);
+      if (t < best.t) {
+        best.t = t;
+        best.wall = {kind, i};
+      }
+    }
+  });
 }
 
 /// Straight flights through the grid (Amanatides–Woo traversal): walls are tested cell by
@@ -88,7 +103,7 @@ FlightHit<Flight> collision(const BasicTable<typename Flight::Scalar>& table, co
       }
       if (!table.grid() || !std::is_same_v<Flight, FreeFlight>) {
         hit.t = t_end;
-        for (int w = 0, n = int(table.wall_count()); w < n; ++w) detail::try_wall(table, scan, w, hit);
+        detail::try_every_wall(table, scan, hit);
       }
       if (hit.found()) hit.state = flight.advance(s, hit.t);
       return hit;

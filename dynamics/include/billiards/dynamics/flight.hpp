@@ -8,6 +8,9 @@
 //   Scalar exit_time(const State& s, const BasicSegmentWall<Scalar>& w, Scalar t_end) const;
 //   Scalar exit_time(const State& s, const BasicArcWall<Scalar>& w, Scalar t_end) const;
 //   static constexpr bool conserves_energy;
+// A flight under a uniform acceleration `accel` (or none) is covariant under affine maps:
+// `elliptic_exit_time` below gives its exit times through elliptic arcs from those through
+// circular arcs.
 // exit_time returns the first time t in [s.t, t_end] at which the trajectory starting from s
 // crosses the wall OUTWARD (from the region's side to the wall's side) at a point within the
 // wall's span, or +infinity if there is none.  A particle already (numerically) on the wall
@@ -48,6 +51,35 @@ struct BasicFreeFlight {
   Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
 };
 using FreeFlight = BasicFreeFlight<double>;
+
+/// Is the flight model's law covariant under affine maps x ↦ L (x − c)?  Straight flights are,
+/// and so are flights under a uniform acceleration (`accel`, mapped to L accel); a flight in a
+/// position-dependent field is not.
+template <class Flight>
+concept affine_covariant = std::is_base_of_v<BasicFreeFlight<typename Flight::Scalar>, Flight> ||
+                           requires(Flight f) { f.accel = f.accel; };
+
+/// The flight seen through the wall's map u = L (x − c) (time is not mapped).
+template <affine_covariant Flight, class Wall>
+Flight mapped(Flight flight, const Wall& w) {
+  if constexpr (requires { flight.accel; }) flight.accel = w.map * flight.accel;
+  return flight;
+}
+template <class State, class Wall>
+State mapped_state(State s, const Wall& w) {
+  s.x = w.to_unit(s.x);
+  s.v = w.map * s.v;
+  return s;
+}
+
+/// The exit time of an affine-covariant flight through an elliptic arc: the mapped flight's
+/// through the arc's unit arc (walls.hpp).
+template <affine_covariant Flight>
+typename Flight::Scalar elliptic_exit_time(const Flight& flight, const typename Flight::State& s,
+                                           const BasicEllipticArcWall<typename Flight::Scalar>& w,
+                                           const typename Flight::Scalar& t_end) {
+  return mapped(flight, w).exit_time(mapped_state(s, w), w.unit, t_end);
+}
 
 /// Does the flight model move in straight lines?  (Their search costs the same with or without
 /// a horizon; dynamics3 adds its free flight.)

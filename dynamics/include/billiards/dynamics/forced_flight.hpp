@@ -54,6 +54,7 @@ struct DrivenScan {
   scan::Quiver<Flight, BasicDrivenState<Real>> quiver;
   Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const;
+  Real exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const;
   /// The first wall of the table the flight leaves through before t_end (the hit's t, wall and
   /// the flight's state there; wall −1 if none).  The walls' windows — the only stretches of the flight in which
   /// they can be hit — are searched in the order in which they open, so a wall whose window

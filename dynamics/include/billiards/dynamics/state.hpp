@@ -19,14 +19,27 @@ struct BasicState {
 };
 using State = BasicState<double>;
 
+/// A wall of a table: its kind (the position of its type in the table's list of wall kinds)
+/// and its index among the walls of that kind.
+struct WallId {
+  int kind = -1, index = -1;
+  bool valid() const { return kind >= 0; }
+  friend bool operator==(const WallId&, const WallId&) = default;
+  template <class Stream>
+  friend Stream& operator<<(Stream& out, const WallId& w) {
+    out << w.kind << ':' << w.index;
+    return out;
+  }
+};
+
 /// Where and when a flight leaves the region through a wall.
 template <class Real>
 struct BasicHit {
   Real t = 0;                                   // absolute time of the collision
-  int wall = -1;                                // index into the table's walls
+  WallId wall;                                  // the wall (invalid: none met)
   Vec2T<Real> point = Vec2T<Real>::Zero();      // collision point (on the wall, to rounding)
   Vec2T<Real> normal = Vec2T<Real>::Zero();     // outward unit normal of the region at `point`
-  bool found() const { return wall >= 0; }
+  bool found() const { return wall.valid(); }
 };
 using Hit = BasicHit<double>;
 
