@@ -107,12 +107,12 @@ bool BasicTable<Real>::contains(const V& p, double tolerance) const {
     return (tolerance == 0 || w.may_be_near(p, tolerance)) && w.distance(p) <= tolerance;
   };
   int winding = 0;
-  bool on_wall = false;
-  for_each_kind([&](const auto& walls, int) {
+  const bool on_wall = any_kind([&](const auto& walls, int) {
     for (const auto& w : walls) {
-      on_wall = on_wall || near(w);
+      if (near(w)) return true;
       winding += w.crossings(p);
     }
+    return false;
   });
   return on_wall || winding != 0;
 }

@@ -65,6 +65,13 @@ class BasicTable {
       (fn(std::get<k>(walls_), int(k)), ...);
     }(std::make_index_sequence<kind_count>{});
   }
+  /// fn(walls, kind) for each kind in turn until one returns true; whether one did.
+  template <class Fn>
+  bool any_kind(Fn&& fn) const {
+    return [&]<std::size_t... k>(std::index_sequence<k...>) {
+      return (fn(std::get<k>(walls_), int(k)) || ...);
+    }(std::make_index_sequence<kind_count>{});
+  }
   /// fn(wall) for the wall `id`; returns what fn returns.
   template <class Fn>
   decltype(auto) visit(const WallId& id, Fn&& fn) const {
