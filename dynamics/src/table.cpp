@@ -2,6 +2,7 @@
 
 #include "billiards/dynamics/precision.hpp"
 
+#include "billiards/geometry/input_error.hpp"
 #include "billiards/geometry/measures.hpp"
 
 #include <algorithm>
@@ -79,6 +80,8 @@ BasicTable<Real>::BasicTable(const geometry::Region2& region) {
     }
   }
   for (const auto& [p, src] : arcs) {
+    if (std::holds_alternative<geometry::EllipticArc>(*p))
+      throw InputError(src.file, src.line, "elliptic walls are not yet supported by the collision search");
     arcs_.emplace_back(std::get<geometry::Arc>(*p));
     sources_.push_back(src);
     boxes_.push_back(geometry::bounding_box(*p));
