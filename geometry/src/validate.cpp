@@ -88,19 +88,22 @@ bool finite(const Piece& p) {
                     p);
 }
 
+/// "segment", "arc" or "elliptic arc".
+std::string kind_name(const Piece& p) { return std::holds_alternative<EllipticArc>(p) ? "elliptic arc" : kind_of(p); }
+
 void check_piece(const Piece& p, const SourceRef& at) {
-  const std::string noun = noun_of(p);
-  if (!finite(p)) fail(at, fmt::format("the {} has a coordinate that is not a finite number", noun));
+  const std::string kind = kind_name(p);
+  if (!finite(p)) fail(at, fmt::format("the {} has a coordinate that is not a finite number", kind));
   const auto* a = std::get_if<Arc>(&p);
   const auto* e = std::get_if<EllipticArc>(&p);
   if (a && !(a->radius > 0)) fail(at, "the arc's radius must be positive");
-  if (e && !(e->semi_axes.minCoeff() > 0)) fail(at, fmt::format("the {}'s semi-axes must be positive", noun));
-  if (!(length_of(p) > 0)) fail(at, fmt::format("zero-length {}: it must have a positive length", noun));
+  if (e && !(e->semi_axes.minCoeff() > 0)) fail(at, "the elliptic arc's semi-axes must be positive");
+  if (!(length_of(p) > 0)) fail(at, fmt::format("zero-length {}: it must have a positive length", kind));
   if (std::holds_alternative<Segment>(p)) return;
   const double sweep = a ? a->sweep : e->sweep;
-  if (std::abs(sweep) > 2 * pi) fail(at, fmt::format("the {} sweeps more than a full turn", noun));
+  if (std::abs(sweep) > 2 * pi) fail(at, fmt::format("the {} sweeps more than a full turn", kind));
   if (source_of(p) == target_of(p) && !is_closed_curve(p))
-    fail(at, fmt::format("the {} starts and ends at the same point: a full {} needs a sweep of ±2π", noun,
+    fail(at, fmt::format("the {} starts and ends at the same point: a full {} needs a sweep of ±2π", kind,
                          a ? "circle" : "ellipse"));
 }
 
@@ -115,7 +118,7 @@ void check_loop(const Loop& loop, const char* what) {
     if (is_closed_curve(p) && n > 1) fail(loop.where[i], fmt::format("a full {} must be a loop by itself", noun_of(p)));
     if (target_of(p) != source_of(next))
       fail(loop.where[i], fmt::format("the loop is not closed: this {} ends at {} but the {} at line {} begins at {}",
-                                      noun_of(p), text(target_of(p)), noun_of(next), loop.where[(i + 1) % n].line,
+                                      kind_name(p), text(target_of(p)), kind_name(next), loop.where[(i + 1) % n].line,
                                       text(source_of(next))));
   }
 }
@@ -144,8 +147,10 @@ void check_arc_ends(const Region2& r, double tol) {
       const Piece& p = loop->pieces[i];
       const bool ok = std::visit(overloaded{[](const Segment&) { return true; }, ends_agree}, p);
       if (!ok)
-        fail(loop->where[i], fmt::format("the {}'s ends are not the points of its curve at its start and end {}",
-                                         noun_of(p), std::holds_alternative<Arc>(p) ? "angles" : "anomalies"));
+        fail(loop->where[i], std::holds_alternative<Arc>(p)
+                                 ? "the arc's ends are not the points of its circle at its start and end angles"
+                                 : "the elliptic arc's ends are not the points of its ellipse at its start and end "
+                                   "anomalies");
     }
 }
 
