@@ -72,9 +72,13 @@ void add_info(CLI::App& app) {
     fmt::print("bounding box     [{:.6g}, {:.6g}] x [{:.6g}, {:.6g}]\n", b[0][0].get<double>(),
                b[1][0].get<double>(), b[0][1].get<double>(), b[1][1].get<double>());
     fmt::print("pieces           {} ({} holes)\n", info["pieces"].size(), shape.region.holes.size());
-    for (const auto& p : info["pieces"])
-      fmt::print("  line {:>4}  {:<7}  length {:<12.8g}  curvature {:+.6g}\n", p["line"].get<int>(),
-                 p["kind"].get<std::string>(), p["length"].get<double>(), p["curvature"].get<double>());
+    for (const auto& p : info["pieces"]) {
+      const auto& k = p["curvature"];  // an elliptic arc's is its range [least, greatest]
+      const std::string curvature = k.is_array() ? fmt::format("{:+.6g} to {:+.6g}", k[0].get<double>(), k[1].get<double>())
+                                                 : fmt::format("{:+.6g}", k.get<double>());
+      fmt::print("  line {:>4}  {:<12}  length {:<12.8g}  curvature {}\n", p["line"].get<int>(),
+                 p["kind"].get<std::string>(), p["length"].get<double>(), curvature);
+    }
   });
 }
 

@@ -14,6 +14,7 @@ using dynamics::Vec2;
 
 namespace {
 
+/// Every bundled 2-D shape.
 std::vector<std::string> bundled_shapes() {
   std::vector<std::string> out;
   for (const auto& e : std::filesystem::directory_iterator(BILLIARDS_SOURCE_DIR "/shapes"))

@@ -16,13 +16,22 @@ using geometry::Vec2;
 
 namespace {
 
-/// Is the point of the arc's circle at polar angle θ within the arc?
-bool within_arc(const geometry::Arc& arc, double theta) {
+/// Is the point of the arc's curve at parameter θ (polar angle, eccentric anomaly) within the arc?
+template <class A>
+bool within_arc(const A& arc, double theta) {
   double rel = arc.sweep > 0 ? theta - arc.start : arc.start - theta;
   rel = std::fmod(rel, 2 * geometry::pi);
   if (rel < 0) rel += 2 * geometry::pi;
   return rel <= std::abs(arc.sweep);
 }
+
+/// An elliptic arc's abscissa as x(φ) = cₓ + r cos(φ − φₓ).
+struct AbscissaWave {
+  double r, phase;
+  explicit AbscissaWave(const geometry::EllipticArc& e)
+      : r(std::hypot(e.semi_axes.x() * std::cos(e.angle), e.semi_axes.y() * std::sin(e.angle))),
+        phase(std::atan2(-e.semi_axes.y() * std::sin(e.angle), e.semi_axes.x() * std::cos(e.angle))) {}
+};
 
 /// The abscissae at which a chord of Ω can change its number of intervals or stop being
 /// smooth: joints, and the leftmost and rightmost points of arcs.  Sorted, unique.
@@ -34,6 +43,10 @@ std::vector<double> strip_breaks(const geometry::Region2& region) {
       if (const auto* arc = std::get_if<geometry::Arc>(&piece)) {
         if (within_arc(*arc, 0)) xs.push_back(arc->center.x() + arc->radius);
         if (within_arc(*arc, geometry::pi)) xs.push_back(arc->center.x() - arc->radius);
+      } else if (const auto* e = std::get_if<geometry::EllipticArc>(&piece)) {
+        const AbscissaWave w(*e);
+        for (double phi : {w.phase, w.phase + geometry::pi})
+          if (within_arc(*e, phi)) xs.push_back(e->point_at(phi).x());
       }
     }
   std::sort(xs.begin(), xs.end());
@@ -50,13 +63,19 @@ std::vector<double> crossings(const geometry::Region2& region, double x) {
       if (const auto* s = std::get_if<geometry::Segment>(&piece)) {
         if (s->a.x() == s->b.x() || x < std::min(s->a.x(), s->b.x()) || x > std::max(s->a.x(), s->b.x())) continue;
         ys.push_back(s->a.y() + (x - s->a.x()) * (s->b.y() - s->a.y()) / (s->b.x() - s->a.x()));
-      } else {
-        const auto& arc = std::get<geometry::Arc>(piece);
-        const double dx = x - arc.center.x();
-        if (std::abs(dx) >= arc.radius) continue;
-        const double h = std::sqrt((arc.radius - dx) * (arc.radius + dx));
+      } else if (const auto* arc = std::get_if<geometry::Arc>(&piece)) {
+        const double dx = x - arc->center.x();
+        if (std::abs(dx) >= arc->radius) continue;
+        const double h = std::sqrt((arc->radius - dx) * (arc->radius + dx));
         for (double dy : {h, -h})
-          if (within_arc(arc, std::atan2(dy, dx))) ys.push_back(arc.center.y() + dy);
+          if (within_arc(*arc, std::atan2(dy, dx))) ys.push_back(arc->center.y() + dy);
+      } else {
+        const auto& e = std::get<geometry::EllipticArc>(piece);
+        const AbscissaWave w(e);
+        const double c = (x - e.center.x()) / w.r;
+        if (std::abs(c) >= 1) continue;
+        for (double phi : {w.phase + std::acos(c), w.phase - std::acos(c)})
+          if (within_arc(e, phi)) ys.push_back(e.point_at(phi).y());
       }
     }
   if (ys.size() % 2) throw std::logic_error("allowed_area: a vertical line met the boundary an odd number of times");

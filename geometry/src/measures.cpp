@@ -1,5 +1,9 @@
 #include "billiards/geometry/measures.hpp"
 
+#include <boost/math/special_functions/ellint_1.hpp>
+#include <boost/math/special_functions/ellint_d.hpp>
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <limits>
 
@@ -21,15 +25,19 @@ namespace {
 /// ½ ∮ (x dy − y dx) along one piece (Green's theorem).
 double area_term(const Piece& p) {
   if (const auto* s = std::get_if<Segment>(&p)) return 0.5 * cross(s->a, s->b);
-  const auto& a = std::get<Arc>(p);
-  const Vec2 d = a.target - a.source;
-  // x = c + r(cos θ, sin θ): ½∫(x dy − y dx) = ½[cₓΔy − c_yΔx + r²Δθ] (the chord terms of
-  // the centre integrate exactly to cₓΔy − c_yΔx).
-  return 0.5 * (a.center.x() * d.y() - a.center.y() * d.x() + a.radius * a.radius * a.sweep);
+  // x = c + U(cos t, sin t) with U = r·I (a circle) or R(angle)·diag(a, b) (an ellipse):
+  // x × dx = c × U dw + det U dt, so ½∫(x dy − y dx) = ½[c × (target − source) + det U · Δt].
+  const auto term = [](const auto& arc, double det) {
+    return 0.5 * (cross(Vec2(arc.center), Vec2(arc.target - arc.source)) + det * arc.sweep);
+  };
+  if (const auto* a = std::get_if<Arc>(&p)) return term(*a, a->radius * a->radius);
+  const auto& e = std::get<EllipticArc>(p);
+  return term(e, e.semi_axes.x() * e.semi_axes.y());
 }
 
-/// Angular extent of the arc as an increasing interval [lo, lo + |sweep|].
-std::pair<double, double> angle_interval(const Arc& a) {
+/// Parameter extent of the arc as an increasing interval [lo, lo + |sweep|].
+template <class A>
+std::pair<double, double> angle_interval(const A& a) {
   return a.sweep >= 0 ? std::pair{a.start, a.start + a.sweep}
                       : std::pair{a.start + a.sweep, a.start};
 }
@@ -39,24 +47,66 @@ void extend_bbox(Vec2& lo, Vec2& hi, const Vec2& p) {
   hi = hi.cwiseMax(p);
 }
 
+/// Calls f(t) for every t = base + kπ in [t0, t1].
+template <class F>
+void for_each_half_turn(double base, double t0, double t1, F f) {
+  for (double k = std::ceil((t0 - base) / pi); base + k * pi <= t1; ++k) f(base + k * pi);
+}
+
 }  // namespace
 
 std::pair<Vec2, Vec2> bounding_box(const Piece& p) {
   Vec2 lo = source_of(p), hi = lo;
   extend_bbox(lo, hi, target_of(p));
+  const auto extend_at = [&](const auto& arc, double base) {
+    const auto [t0, t1] = angle_interval(arc);
+    for_each_half_turn(base, t0, t1, [&](double t) { extend_bbox(lo, hi, arc.point_at(t)); });
+  };
   if (const auto* a = std::get_if<Arc>(&p)) {
     // Axis-extreme points of the circle whose angle k·π/2 falls inside the arc.
-    const auto [t0, t1] = angle_interval(*a);
-    for (double k = std::ceil(t0 / (pi / 2)); k * (pi / 2) <= t1; ++k) extend_bbox(lo, hi, a->point_at(k * (pi / 2)));
+    extend_at(*a, 0);
+    extend_at(*a, pi / 2);
+  } else if (const auto* e = std::get_if<EllipticArc>(&p)) {
+    // x(φ) = cₓ + a cosθ cos φ − b sinθ sin φ is extreme where tan φ = −(b sinθ)/(a cosθ), and
+    // y(φ) where tan φ = (b cosθ)/(a sinθ).
+    const double a = e->semi_axes.x(), b = e->semi_axes.y(), c = std::cos(e->angle), s = std::sin(e->angle);
+    extend_at(*e, std::atan2(-b * s, a * c));
+    extend_at(*e, std::atan2(b * c, a * s));
   }
   return {lo, hi};
 }
+
+namespace {
+
+/// ∫ n nᵀ ds over an elliptic arc.  With a ≥ b the outward normal is R(angle)·m/|m|, m =
+/// (b cos φ, a sin φ), |m| = a Δ(ψ), Δ(ψ) = √(1 − k² sin²ψ), ψ = φ − π/2, k² = 1 − b²/a², so
+/// (Legendre's F and D = (F − E)/k², both stable as k → 0):
+///   ∫ b² cos²φ/|m| dφ = (b²/a) D,   ∫ a² sin²φ/|m| dφ = a (F − D),
+///   ∫ ab cos φ sin φ/|m| dφ = −b ∫ sin ψ cos ψ/Δ dψ = −b (sin²ψ₁ − sin²ψ₀)/(Δ₁ + Δ₀).
+Eigen::Matrix2d elliptic_boundary_tensor(const EllipticArc& arc) {
+  const EllipticArc e = arc.major_first();
+  const double a = e.semi_axes.x(), b = e.semi_axes.y();
+  const double k = std::sqrt((a - b) * (a + b)) / a;
+  const auto [phi0, phi1] = angle_interval(e);
+  const double psi0 = phi0 - pi / 2, psi1 = phi1 - pi / 2;
+  const auto delta = [&](double psi) { return std::sqrt(1 - k * k * std::sin(psi) * std::sin(psi)); };
+  const double F = boost::math::ellint_1(k, psi1) - boost::math::ellint_1(k, psi0);
+  const double D = boost::math::ellint_d(k, psi1) - boost::math::ellint_d(k, psi0);
+  const double off = -b * std::sin(psi1 - psi0) * std::sin(psi1 + psi0) / (delta(psi1) + delta(psi0));
+  Eigen::Matrix2d body;
+  body << b * b / a * D, off, off, a * (F - D);
+  const Eigen::Matrix2d R = Eigen::Rotation2Dd(e.angle).toRotationMatrix();
+  return R * body * R.transpose();
+}
+
+}  // namespace
 
 Eigen::Matrix2d boundary_tensor_of(const Piece& p) {
   if (const auto* s = std::get_if<Segment>(&p)) {
     const Vec2 n = outward_normal(p, s->a);
     return (s->b - s->a).norm() * n * n.transpose();
   }
+  if (const auto* e = std::get_if<EllipticArc>(&p)) return elliptic_boundary_tensor(*e);
   // n = ±(cos θ, sin θ): ∫cos² = θ/2 + sin2θ/4, ∫sin² = θ/2 − sin2θ/4, ∫cos·sin = −cos2θ/4.
   const auto& a = std::get<Arc>(p);
   const auto [t0, t1] = angle_interval(a);

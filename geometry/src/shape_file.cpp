@@ -4,9 +4,11 @@
 #include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/validate.hpp"
 #include "billiards/geometry/yaml_reader.hpp"
+#include "conic_intersection.hpp"
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -15,45 +17,61 @@ namespace billiards::geometry {
 
 namespace {
 
-/// Relative tolerance for "this point lies on that circle" and "these circles are tangent":
-/// far above rounding of expressions like 2/sqrt(3), far below any deliberate gap.
+/// Relative tolerance for "this point lies on that curve" and "these curves are tangent": far
+/// above rounding of expressions like 2/sqrt(3), far below any deliberate gap.
 constexpr double on_curve_tolerance = 1e-9;
 
 using Reader = YamlReader;
 
-struct Circle {
-  Vec2 center;
-  double radius;
+/// The curve of a `circle:`/`arc:` (semi-axes (r, r), angle 0) or of an `ellipse:`/
+/// `elliptic_arc:`, and the side of it the region lies on.
+struct Curve {
+  EllipticArc ellipse;  // center, semi_axes, angle
+  bool circle;
   bool region_inside;
   SourceRef where;
+
+  double radius() const { return ellipse.semi_axes.x(); }
+  double scale() const { return std::max(ellipse.semi_axes.maxCoeff(), ellipse.center.norm()); }
+  std::string noun() const { return circle ? "arc" : "elliptic arc"; }
+  /// A vector from the centre whose polar angle is the curve's parameter at p (the polar angle,
+  /// the eccentric anomaly).
+  Vec2 preimage(const Vec2& p) const {
+    const Vec2 d = p - ellipse.center;
+    if (circle) return d;
+    return {ellipse.semi_axes.y() * (std::cos(ellipse.angle) * d.x() + std::sin(ellipse.angle) * d.y()),
+            ellipse.semi_axes.x() * (-std::sin(ellipse.angle) * d.x() + std::cos(ellipse.angle) * d.y())};
+  }
 };
 
-/// One element of a `pieces:` list: a joint point, or an arc's circle.
+/// One element of a `pieces:` list: a joint point, or the curve of an arc or elliptic arc.
 struct Element {
   std::optional<Vec2> point;  // explicit joint
-  std::optional<Vec2> near;   // joint = intersection of the neighbouring circles nearest this
-  std::optional<Circle> arc;
+  std::optional<Vec2> near;   // joint = intersection of the neighbouring curves nearest this
+  std::optional<Curve> arc;
   SourceRef where;
 };
 
-double scale_of(const Circle& a, const Circle& b) {
-  return std::max({a.radius, b.radius, a.center.norm(), b.center.norm()});
+std::string pair_name(const Curve& a, const Curve& b) {
+  if (a.circle && b.circle)
+    return "the arcs at lines " + std::to_string(a.where.line) + " and " + std::to_string(b.where.line);
+  return "the " + a.noun() + " at line " + std::to_string(a.where.line) + " and the " + b.noun() + " at line " +
+         std::to_string(b.where.line);
 }
 
 /// Meeting point of two consecutive circles: their tangency point, or the intersection
 /// nearest `near` when given.
-Vec2 joint_of(const Circle& a, const Circle& b, const std::optional<Vec2>& near) {
-  const Vec2 u = b.center - a.center;
-  const double d = u.norm();
-  const double tol = on_curve_tolerance * scale_of(a, b);
-  const std::string pair = "the arcs at lines " + std::to_string(a.where.line) + " and " +
-                           std::to_string(b.where.line);
+Vec2 circles_joint(const Curve& a, const Curve& b, const std::optional<Vec2>& near) {
+  const Vec2 u = b.ellipse.center - a.ellipse.center;
+  const double d = u.norm(), ra = a.radius(), rb = b.radius();
+  const double tol = on_curve_tolerance * std::max(a.scale(), b.scale());
+  const std::string pair = pair_name(a, b);
   if (d <= tol) throw InputError(a.where.file, a.where.line, pair + " are concentric");
-  const double outer_gap = d - (a.radius + b.radius);        // > 0: apart
-  const double inner_gap = std::abs(a.radius - b.radius) - d;  // > 0: one inside the other
-  if (!near && std::abs(outer_gap) <= tol) return a.center + a.radius * u / d;
+  const double outer_gap = d - (ra + rb);          // > 0: apart
+  const double inner_gap = std::abs(ra - rb) - d;  // > 0: one inside the other
+  if (!near && std::abs(outer_gap) <= tol) return a.ellipse.center + ra * u / d;
   if (!near && std::abs(inner_gap) <= tol)
-    return a.radius > b.radius ? Vec2(a.center + a.radius * u / d) : Vec2(b.center - b.radius * u / d);
+    return ra > rb ? Vec2(a.ellipse.center + ra * u / d) : Vec2(b.ellipse.center - rb * u / d);
   if (outer_gap > tol || inner_gap > tol)
     throw InputError(a.where.file, b.where.line,
                      pair + " do not meet (gap " + std::to_string(std::max(outer_gap, inner_gap)) +
@@ -62,44 +80,71 @@ Vec2 joint_of(const Circle& a, const Circle& b, const std::optional<Vec2>& near)
     throw InputError(a.where.file, b.where.line,
                      pair + " cross at two points: put '- point: {near: [x, y]}' between them");
   // Two intersections: foot of the radical line plus/minus h along its normal.
-  const double along = (d * d + a.radius * a.radius - b.radius * b.radius) / (2 * d);
-  const double h = std::sqrt(std::max(0.0, a.radius * a.radius - along * along));
-  const Vec2 foot = a.center + along * u / d, perp(-u.y() / d, u.x() / d);
+  const double along = (d * d + ra * ra - rb * rb) / (2 * d);
+  const double h = std::sqrt(std::max(0.0, ra * ra - along * along));
+  const Vec2 foot = a.ellipse.center + along * u / d, perp(-u.y() / d, u.x() / d);
   const Vec2 p = foot + h * perp, q = foot - h * perp;
   return (p - *near).norm() <= (q - *near).norm() ? p : q;
 }
 
-void require_on_circle(const Vec2& p, const Circle& c, const SourceRef& point_ref) {
-  const double off = std::abs((p - c.center).norm() - c.radius);
-  if (off > on_curve_tolerance * std::max(c.radius, c.center.norm()))
-    throw InputError(point_ref.file, point_ref.line,
-                     "point is not on the circle of the arc at line " + std::to_string(c.where.line) +
-                         " (off by " + std::to_string(off) + ")");
+/// Meeting point of two consecutive curves, one of them at least an ellipse: their only common
+/// point, a tangency; or the common point nearest `near` when given.
+Vec2 conics_joint(const Curve& a, const Curve& b, const std::optional<Vec2>& near) {
+  const double tol = on_curve_tolerance * std::max(a.scale(), b.scale());
+  const Meetings m = meetings(a.ellipse, b.ellipse, tol);
+  const std::string pair = pair_name(a, b);
+  std::vector<Vec2> all = m.touching;
+  all.insert(all.end(), m.crossing.begin(), m.crossing.end());
+  if (all.empty()) throw InputError(a.where.file, b.where.line, pair + " do not meet: the loop is not closed");
+  if (near)
+    return *std::min_element(all.begin(), all.end(),
+                             [&](const Vec2& p, const Vec2& q) { return (p - *near).norm() < (q - *near).norm(); });
+  if (all.size() == 1 && m.crossing.empty()) return all[0];
+  throw InputError(a.where.file, b.where.line,
+                   pair + (m.crossing.empty() ? " touch" : " cross or touch") + " at " + std::to_string(all.size()) +
+                       " points, not at one tangency point: put '- point: {near: [x, y]}' between them");
 }
 
-Arc make_arc(const Circle& c, const Vec2& from, const Vec2& to) {
-  const Vec2 u0 = from - c.center, u1 = to - c.center;
+Vec2 joint_of(const Curve& a, const Curve& b, const std::optional<Vec2>& near) {
+  return a.circle && b.circle ? circles_joint(a, b, near) : conics_joint(a, b, near);
+}
+
+void require_on_curve(const Vec2& p, const Curve& c, const SourceRef& point_ref) {
+  const double off = c.circle ? std::abs((p - c.ellipse.center).norm() - c.radius()) : distance_estimate(c.ellipse, p);
+  if (off > on_curve_tolerance * c.scale())
+    throw InputError(point_ref.file, point_ref.line,
+                     std::string("point is not on the ") + (c.circle ? "circle" : "ellipse") + " of the " + c.noun() +
+                         " at line " + std::to_string(c.where.line) + " (off by " + std::to_string(off) + ")");
+}
+
+/// The arc of `c`'s curve from `from` to `to` (both on it), counter-clockwise when the region is
+/// inside, clockwise otherwise; the whole curve when from == to.
+Piece make_arc(const Curve& c, const Vec2& from, const Vec2& to) {
+  const Vec2 u0 = c.preimage(from), u1 = c.preimage(to);
   double ccw = std::atan2(cross(u0, u1), u0.dot(u1));  // (−π, π]
   if (ccw <= 0) ccw += 2 * pi;
   if (from == to) ccw = 2 * pi;
-  Arc a;
-  a.center = c.center;
-  a.radius = c.radius;
-  a.start = std::atan2(u0.y(), u0.x());
-  a.sweep = c.region_inside ? ccw : -(ccw == 2 * pi ? 2 * pi : 2 * pi - ccw);
-  a.source = from;
-  a.target = to;
-  return a;
+  const double start = std::atan2(u0.y(), u0.x());
+  const double sweep = c.region_inside ? ccw : -(ccw == 2 * pi ? 2 * pi : 2 * pi - ccw);
+  if (c.circle) return Arc{c.ellipse.center, c.radius(), start, sweep, from, to};
+  EllipticArc e = c.ellipse;
+  e.start = start;
+  e.sweep = sweep;
+  e.source = from;
+  e.target = to;
+  return e;
 }
 
-Loop full_circle(const Circle& c, bool hole) {
-  Arc a;
-  a.center = c.center;
-  a.radius = c.radius;
-  a.start = 0;
-  a.sweep = hole ? -2 * pi : 2 * pi;
-  a.source = a.target = a.point_at(0);
-  return Loop{{a}, {c.where}, c.where};
+Loop full_curve(const Curve& c, bool hole) {
+  Piece p = c.circle ? Piece(Arc{c.ellipse.center, c.radius(), 0, 0, {}, {}}) : Piece(c.ellipse);
+  std::visit(overloaded{[](Segment&) {},
+                        [&](auto& arc) {
+                          arc.start = 0;
+                          arc.sweep = hole ? -2 * pi : 2 * pi;
+                          arc.source = arc.target = arc.point_at(0);
+                        }},
+             p);
+  return Loop{{p}, {c.where}, c.where};
 }
 
 class LoopReader {
@@ -108,31 +153,60 @@ class LoopReader {
 
   Loop read(const YAML::Node& n, bool hole) const {
     const std::string what = hole ? "a hole" : "the boundary";
-    r_.expect_keys(n, {"polygon", "circle", "pieces"}, what);
-    if (n.size() != 1) r_.fail(n, what + " must be exactly one of: polygon, circle, pieces");
-    Loop loop = n["polygon"]  ? polygon(n["polygon"], hole)
-                : n["circle"] ? full_circle(circle(n["circle"], !hole), hole)
-                              : pieces(n["pieces"]);
+    r_.expect_keys(n, {"polygon", "circle", "ellipse", "pieces"}, what);
+    if (n.size() != 1) r_.fail(n, what + " must be exactly one of: polygon, circle, ellipse, pieces");
+    Loop loop = n["polygon"]   ? polygon(n["polygon"], hole)
+                : n["circle"]  ? full_curve(circle(n["circle"], !hole), hole)
+                : n["ellipse"] ? full_curve(ellipse(n["ellipse"], !hole), hole)
+                               : pieces(n["pieces"]);
     loop.origin = r_.ref(n);
     return loop;
   }
 
  private:
-  Circle circle(const YAML::Node& n, bool region_inside) const {
-    r_.expect_keys(n, {"center", "radius"}, "a circle");
-    return {r_.point(r_.required(n, "center", "a circle")),
-            r_.positive(r_.required(n, "radius", "a circle"), "radius"), region_inside, r_.ref(n)};
+  Curve circle(const YAML::Node& n, bool region_inside, std::initializer_list<const char*> keys = {"center", "radius"},
+               const char* what = "a circle") const {
+    r_.expect_keys(n, keys, what);
+    EllipticArc e;
+    e.center = r_.point(r_.required(n, "center", what));
+    const double r = r_.positive(r_.required(n, "radius", what), "radius");
+    e.semi_axes = {r, r};
+    return {e, true, region_inside, r_.ref(n)};
   }
 
-  Circle arc(const YAML::Node& n) const {
-    r_.expect_keys(n, {"center", "radius", "side"}, "an arc");
-    Circle c{r_.point(r_.required(n, "center", "an arc")),
-             r_.positive(r_.required(n, "radius", "an arc"), "radius"), true, r_.ref(n)};
-    const YAML::Node side = r_.required(n, "side", "an arc");
+  Curve ellipse(const YAML::Node& n, bool region_inside,
+                std::initializer_list<const char*> keys = {"center", "semi_axes", "angle"},
+                const char* what = "an ellipse") const {
+    r_.expect_keys(n, keys, what);
+    EllipticArc e;
+    e.center = r_.point(r_.required(n, "center", what));
+    const YAML::Node axes = r_.required(n, "semi_axes", what);
+    e.semi_axes = r_.point(axes);
+    if (!(e.semi_axes.minCoeff() > 0))
+      r_.fail(axes, "semi_axes must be positive, got [" + std::to_string(e.semi_axes.x()) + ", " +
+                        std::to_string(e.semi_axes.y()) + "]");
+    e.angle = n["angle"] ? r_.number(n["angle"]) : 0.0;
+    return {e, false, region_inside, r_.ref(n)};
+  }
+
+  /// The region's side of an arc's curve.
+  bool region_inside(const YAML::Node& n, const std::string& what, const char* curve) const {
+    const YAML::Node side = r_.required(n, "side", what);
     const std::string s = side.IsScalar() ? side.Scalar() : "";
     if (s != "inside" && s != "outside")
-      r_.fail(side, "side must be 'inside' (region inside the circle) or 'outside'");
-    c.region_inside = s == "inside";
+      r_.fail(side, std::string("side must be 'inside' (region inside the ") + curve + ") or 'outside'");
+    return s == "inside";
+  }
+
+  Curve arc(const YAML::Node& n) const {
+    Curve c = circle(n, true, {"center", "radius", "side"}, "an arc");
+    c.region_inside = region_inside(n, "an arc", "circle");
+    return c;
+  }
+
+  Curve elliptic_arc(const YAML::Node& n) const {
+    Curve c = ellipse(n, true, {"center", "semi_axes", "angle", "side"}, "an elliptic arc");
+    c.region_inside = region_inside(n, "an elliptic arc", "ellipse");
     return c;
   }
 
@@ -168,12 +242,14 @@ class LoopReader {
   }
 
   Element element(const YAML::Node& n) const {
-    r_.expect_keys(n, {"point", "arc"}, "a loop element");
-    if (n.size() != 1) r_.fail(n, "a loop element is either '- point: ...' or '- arc: ...'");
+    r_.expect_keys(n, {"point", "arc", "elliptic_arc"}, "a loop element");
+    if (n.size() != 1) r_.fail(n, "a loop element is either '- point: ...', '- arc: ...' or '- elliptic_arc: ...'");
     Element e;
     e.where = r_.ref(n);
     if (n["arc"]) {
       e.arc = arc(n["arc"]);
+    } else if (n["elliptic_arc"]) {
+      e.arc = elliptic_arc(n["elliptic_arc"]);
     } else if (n["point"].IsMap()) {
       r_.expect_keys(n["point"], {"near"}, "a point");
       e.near = r_.point(r_.required(n["point"], "near", "a point"));
@@ -190,8 +266,8 @@ class LoopReader {
     Loop loop;
     loop.origin = r_.ref(n);
     const std::size_t m = e.size();
-    if (m == 1 && e[0].arc) return full_circle(*e[0].arc, !e[0].arc->region_inside);
-    // Resolve every joint: an explicit point, or the meeting point of two consecutive arcs.
+    if (m == 1 && e[0].arc) return full_curve(*e[0].arc, !e[0].arc->region_inside);
+    // Resolve every joint: an explicit point, or the meeting point of two consecutive curves.
     std::vector<std::optional<Vec2>> joint_after(m);  // joint between e[i] and e[i+1]
     for (std::size_t i = 0; i < m; ++i) {
       const Element& a = e[i];
@@ -204,7 +280,7 @@ class LoopReader {
       if (e[i].point) { at[i] = *e[i].point; continue; }
       const Element& prev = e[(i + m - 1) % m];
       const Element& next = e[(i + 1) % m];
-      if (!prev.arc || !next.arc) r_.fail(n[i], "'near' points must stand between two arcs");
+      if (!prev.arc || !next.arc) r_.fail(n[i], "'near' points must stand between two arcs or elliptic arcs");
       at[i] = joint_of(*prev.arc, *next.arc, e[i].near);
     }
     // Walk the cycle; every arc runs from the joint before it to the joint after it, and
@@ -214,15 +290,15 @@ class LoopReader {
       if (e[i].arc) {
         const Vec2 from = e[h].arc ? *joint_after[h] : at[h];
         const Vec2 to = e[j].arc ? *joint_after[i] : at[j];
-        if (!e[h].arc) require_on_circle(from, *e[i].arc, e[h].where);
-        if (!e[j].arc) require_on_circle(to, *e[i].arc, e[j].where);
+        if (!e[h].arc) require_on_curve(from, *e[i].arc, e[h].where);
+        if (!e[j].arc) require_on_curve(to, *e[i].arc, e[j].where);
         loop.pieces.push_back(make_arc(*e[i].arc, from, to));
         loop.where.push_back(e[i].where);
       } else if (!e[j].arc) {
         add_segment(loop, at[i], at[j], e[i].where);
       }
     }
-    if (loop.pieces.size() < 2 && !(loop.pieces.size() == 1 && std::holds_alternative<Arc>(loop.pieces[0])))
+    if (loop.pieces.size() < 2 && !(loop.pieces.size() == 1 && is_closed_curve(loop.pieces[0])))
       r_.fail(n, "a loop needs at least two pieces");
     return loop;
   }

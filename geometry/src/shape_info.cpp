@@ -6,9 +6,26 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
+
 namespace billiards::geometry {
 
 namespace {
+
+/// [least, greatest] signed curvature along an elliptic arc: |κ| is extreme at its ends and
+/// where it passes an end of an axis (φ a multiple of π/2).
+std::array<double, 2> curvature_range(const EllipticArc& e) {
+  const double end = e.start + e.sweep;
+  std::array<double, 2> range{e.curvature_at(e.start), e.curvature_at(e.start)};
+  const auto include = [&](double phi) {
+    range[0] = std::min(range[0], e.curvature_at(phi));
+    range[1] = std::max(range[1], e.curvature_at(phi));
+  };
+  include(end);
+  const double lo = std::min(e.start, end), hi = std::max(e.start, end);
+  for (double k = std::ceil(lo / (pi / 2)); k * (pi / 2) <= hi; ++k) include(k * (pi / 2));
+  return range;
+}
 
 /// Every piece of every loop, with its source line.
 nlohmann::json pieces_json(const Region2& region) {
@@ -20,9 +37,17 @@ nlohmann::json pieces_json(const Region2& region) {
                           {"line", loop->where[i].line},
                           {"loop", loop == &region.outer ? "boundary" : "hole"},
                           {"length", length_of(p)},
-                          {"curvature", curvature_of(p)},
                           {"from", {source_of(p).x(), source_of(p).y()}},
                           {"to", {target_of(p).x(), target_of(p).y()}}};
+      if (const auto* e = std::get_if<EllipticArc>(&p)) {
+        j["center"] = {e->center.x(), e->center.y()};
+        j["semi_axes"] = {e->semi_axes.x(), e->semi_axes.y()};
+        j["angle"] = e->angle;
+        j["sweep"] = e->sweep;  // in eccentric anomaly
+        j["curvature"] = curvature_range(*e);
+      } else {
+        j["curvature"] = curvature_at(p, source_of(p));  // constant along segments and arcs
+      }
       if (const auto* a = std::get_if<Arc>(&p)) {
         j["center"] = {a->center.x(), a->center.y()};
         j["radius"] = a->radius;

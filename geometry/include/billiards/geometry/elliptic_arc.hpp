@@ -27,6 +27,25 @@ struct EllipticArc {
     const double u = semi_axes.x() * std::cos(phi), w = semi_axes.y() * std::sin(phi);
     return center + Eigen::Vector2d(c * u - s * w, s * u + c * w);
   }
+
+  /// dx/dφ, the counter-clockwise tangent at anomaly φ (not normalised).
+  Eigen::Vector2d tangent_at(double phi) const;
+  /// |dx/dφ| = √(a² sin²φ + b² cos²φ): arc length per unit of anomaly.
+  double speed_at(double phi) const;
+  /// The anomaly of a point on the ellipse (of its preimage's direction, off the ellipse).
+  double anomaly_of(const Eigen::Vector2d& p) const;
+  /// Signed curvature seen from the region, ab / (a² sin²φ + b² cos²φ)^{3/2}, positive when
+  /// focusing (cf. Arc::curvature).
+  double curvature_at(double phi) const;
+
+  /// A primitive of the arc length in φ: the length from φ₀ to φ₁ is length_to(φ₁) −
+  /// length_to(φ₀) (an incomplete elliptic integral of the second kind, increasing in φ).
+  double length_to(double phi) const;
+  /// The anomaly φ ∈ [lo, hi] with length_to(φ) = s (Newton's method, bracketed).
+  double anomaly_at_length(double s, double lo, double hi) const;
+  /// The same arc with semi_axes.x() ≥ semi_axes.y(): axes swapped, the first turned by π/2
+  /// and the anomalies shifted by −π/2 (point_at(φ − π/2) of the result is point_at(φ)).
+  EllipticArc major_first() const;
 };
 
 }  // namespace billiards::geometry

@@ -1,10 +1,12 @@
-// Boundary pieces of a 2-D billiard: line segments and circular arcs.
+// Boundary pieces of a 2-D billiard: line segments, circular arcs and elliptic arcs.
 //
 // Convention (as in CGAL's general polygons): every loop is traversed with the region on its
 // LEFT.  The outer boundary therefore runs counter-clockwise and holes run clockwise.  The
 // outward normal of the region (pointing out of the billiard, into the wall) is the RIGHT
 // normal of the direction of travel.
 #pragma once
+
+#include "billiards/geometry/elliptic_arc.hpp"
 
 #include <Eigen/Core>
 
@@ -23,6 +25,12 @@ inline constexpr double pi = 3.14159265358979323846;
 /// z-component of the 2-D cross product.
 template <class T>
 inline T cross(const Vec2T<T>& a, const Vec2T<T>& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// std::visit over a Piece with one lambda per kind.
+template <class... F>
+struct overloaded : F... { using F::operator()...; };
+template <class... F>
+overloaded(F...) -> overloaded<F...>;
 
 /// Where something was written in a shape file, for error messages.
 struct SourceRef {
@@ -54,18 +62,22 @@ struct Arc {
   Vec2 point_at(double angle) const;
 };
 
-using Piece = std::variant<Segment, Arc>;
+/// See elliptic_arc.hpp.
+using Piece = std::variant<Segment, Arc, EllipticArc>;
 
 Vec2 source_of(const Piece& p);
 Vec2 target_of(const Piece& p);
 double length_of(const Piece& p);
-/// Signed curvature (0 for segments), see Arc::curvature.
-double curvature_of(const Piece& p);
+/// Signed curvature seen from the region at a point on the piece: 0 on segments, ±1/r on
+/// arcs (Arc::curvature), ±ab/(a² sin²φ + b² cos²φ)^{3/2} on elliptic arcs; > 0 focusing.
+double curvature_at(const Piece& p, const Vec2& on_piece);
 /// Outward unit normal of the region at a point on the piece (projected onto its curve).
 Vec2 outward_normal(const Piece& p, const Vec2& on_piece);
 /// Point at arc-length fraction u ∈ [0, 1] along the piece.
 Vec2 point_along(const Piece& p, double u);
-const char* kind_of(const Piece& p);  // "segment" or "arc"
+const char* kind_of(const Piece& p);  // "segment", "arc" or "elliptic_arc"
+/// A full circle or a full ellipse (a loop by itself).
+bool is_closed_curve(const Piece& p);
 
 /// A closed curve: pieces[i].target == pieces[i+1].source (cyclically), region on the left.
 struct Loop {
@@ -76,7 +88,8 @@ struct Loop {
 
 /// The loop as a closed polyline for drawing: each piece gives its vertices up to, not
 /// including, its target (the next piece's source); arcs get one every `arc_step` radians (at
-/// least 4).
+/// least 4), elliptic arcs one every `arc_step` of eccentric anomaly (denser where the ellipse
+/// bends most).
 std::vector<Vec2> outline_of(const Loop& loop, double arc_step);
 
 /// A 2-D billiard table: a bounded region = inside `outer` and outside every hole.
