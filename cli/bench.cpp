@@ -20,7 +20,7 @@ namespace billiards::cli {
 namespace {
 
 struct SpeedErrorArgs {
-  std::string scene = "scenes/clover-driven.yaml";
+  std::string scene = (data_dir() / "scenes/clover-driven.yaml").string();
   std::vector<std::string> omegas = {"40*pi", "320*pi"};
   std::string out = "out/speed-error";
   bool quick = false;
