@@ -62,7 +62,8 @@ def scene_dict(shape, *, force=None, energy=None, positions=None, velocities=Non
         d["initial"] = {"microcanonical": {"energy": energy}}
         d["run"]["particles"] = 1000 if particles is None else particles
     if record is not None:
-        d["run"]["record"] = [float(t) for t in record] if np.ndim(record) else {"every": record}
+        # As `billiard run --record`: 0 and the end time are added.
+        d["run"]["record"] = [0.0, *(float(t) for t in record if t > 0)] if np.ndim(record) else {"every": record}
     return d
 
 
