@@ -9,20 +9,9 @@ import json
 import os
 import pathlib
 import shutil
-import subprocess
 import sys
 
-
-def sh(*args, cwd=None, env=None):
-    done = subprocess.run([str(a) for a in args], cwd=cwd, env=env, capture_output=True, text=True)
-    if done.returncode != 0:
-        sys.exit(f"FAILED: {' '.join(map(str, args))}\n{done.stdout}\n{done.stderr}")
-    return done.stdout
-
-
-def check(condition, message):
-    if not condition:
-        sys.exit(f"FAILED: {message}")
+from run import check, sh
 
 
 def main():

@@ -10,15 +10,9 @@ Usage: check_python_package.py SOURCE_DIR BUILD_DIR WORK_DIR
 import os
 import pathlib
 import shutil
-import subprocess
 import sys
 
-
-def sh(*args, cwd=None, env=None):
-    done = subprocess.run([str(a) for a in args], cwd=cwd, env=env, capture_output=True, text=True)
-    if done.returncode != 0:
-        sys.exit(f"FAILED: {' '.join(map(str, args))}\n{done.stdout}\n{done.stderr}")
-    return done.stdout
+from run import check, sh
 
 
 def venv(path):
@@ -38,24 +32,22 @@ def main():
     python = venv(work / "venv")
     sh(python, "-m", "pip", "install", "--no-build-isolation", "--no-index", "--quiet", source, cwd=work, env=env)
     where = sh(python, "-c", "import billiardkit; print(billiardkit.__file__)", cwd=work, env=env).strip()
-    if not where.startswith(str(work / "venv")):
-        sys.exit(f"FAILED: billiardkit imported from {where}, not from the venv")
+    check(where.startswith(str(work / "venv")), f"billiardkit imported from {where}, not from the venv")
     print(sh(python, "-m", "pytest", "-q", "-p", "no:cacheprovider", source / "python" / "tests", cwd=work, env=env))
 
     # The wheel, into another venv.
     sh(sys.executable, "-m", "build", "--wheel", "--no-isolation", "--outdir", work / "dist", source, cwd=work, env=env)
     wheels = list((work / "dist").glob(f"billiardkit-{version}-*.whl"))
-    if len(wheels) != 1:
-        sys.exit(f"FAILED: expected one billiardkit-{version} wheel, found {wheels}")
+    check(len(wheels) == 1, f"expected one billiardkit-{version} wheel, found {wheels}")
     python = venv(work / "venv-wheel")
     sh(python, "-m", "pip", "install", "--no-index", "--quiet", wheels[0], cwd=work, env=env)
-    check = (f"import billiardkit as bk, importlib.metadata as md, math\n"
+    smoke = (f"import billiardkit as bk, importlib.metadata as md, math\n"
              f"assert bk.__version__ == md.version('billiardkit') == {version!r}, bk.__version__\n"
              f"i = bk.load_shape({str(source / 'shapes' / 'circle.yaml')!r}).info()\n"
              f"assert abs(i['mean_free_path'] - math.pi * i['V'] / i['S']) < 1e-14\n"
              f"import billiardkit._core, os\n"
              f"assert os.path.isfile(os.path.join(os.path.dirname(bk.__file__), '__init__.pyi'))\n")
-    sh(python, "-c", check, cwd=work, env=env)
+    sh(python, "-c", smoke, cwd=work, env=env)
     print(f"billiardkit {version}: pip install . and the wheel both install and work")
 
 
