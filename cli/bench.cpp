@@ -1,5 +1,5 @@
 // billiard bench speed-error: the toolkit's exact driven flight against an Odeint baseline on the
-// same initial conditions (bench/speed_error.hpp), written as speed-error.csv and drawn as
+// same initial conditions (analysis/speed_error.hpp), written as speed-error.csv and drawn as
 // speed-error.png by scripts/plot_speed_error.py.
 #include "commands.hpp"
 #include "output.hpp"
@@ -7,7 +7,7 @@
 
 #include "billiards/dynamics/scene.hpp"
 #include "billiards/dynamics/table.hpp"
-#include "speed_error.hpp"
+#include "billiards/analysis/speed_error.hpp"
 
 #include <fmt/core.h>
 
@@ -20,21 +20,21 @@ namespace billiards::cli {
 namespace {
 
 struct SpeedErrorArgs {
-  std::string scene = "scenes/clover-driven.yaml";
+  std::string scene = (data_dir() / "scenes/clover-driven.yaml").string();
   std::vector<std::string> omegas = {"40*pi", "320*pi"};
   std::string out = "out/speed-error";
   bool quick = false;
   std::size_t particles = 0, mpfr_particles = 0;  // 0: the defaults of the mode
 };
 
-std::string csv_row(const bench::SpeedErrorRow& r) {
+std::string csv_row(const analysis::SpeedErrorRow& r) {
   return fmt::format("{},{:.17g},{:.17g},{:.3g},{},{},{},{:.6g},{:.17g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
                      r.method, r.omega, r.omega / geometry::pi, r.tolerance, r.particles, r.escapes, r.unconfirmed,
                      r.cpu_seconds_per_time, r.var_dE, r.var_dE_error, r.var_dE_se, r.median_position_error,
                      r.median_first_collision_error, r.collisions_per_particle);
 }
 
-void print_rows(const std::vector<bench::SpeedErrorRow>& rows) {
+void print_rows(const std::vector<analysis::SpeedErrorRow>& rows) {
   fmt::print("  {:<7} {:>8} {:>12} {:>12} {:>10} {:>10} {:>10} {:>8} {:>7}\n", "method", "tol", "cpu s/t/part",
              "Var(dE)", "|err Var|", "|dx| end", "|dx| 1st", "escapes", "coll.");
   for (const auto& r : rows)
@@ -44,7 +44,7 @@ void print_rows(const std::vector<bench::SpeedErrorRow>& rows) {
 }
 
 void speed_error(const SpeedErrorArgs& args) {
-  bench::SpeedErrorOptions opt;
+  analysis::SpeedErrorOptions opt;
   opt.tolerances = args.quick ? std::vector<double>{1e-3, 1e-5, 1e-7, 1e-9}
                               : std::vector<double>{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
   opt.particles = args.particles ? args.particles : args.quick ? 24 : 200;
@@ -72,11 +72,11 @@ void speed_error(const SpeedErrorArgs& args) {
     fmt::print("omega = {} = {:.6g}: {} particles to t = {}, {} checked in MPFR\n", omega, flight.omega,
                opt.particles, opt.t_end, std::min(opt.particles, opt.mpfr_particles));
     std::fflush(stdout);
-    const auto rows = bench::speed_error(table, flight, opt);
+    const auto rows = analysis::speed_error(table, flight, opt);
     print_rows(rows);
     for (const auto& r : rows) csv += csv_row(r);
-    const auto ratios = bench::speed_ratios(rows);
-    const auto report = [&](const char* what, const bench::SpeedErrorRow* r) {
+    const auto ratios = analysis::speed_ratios(rows);
+    const auto report = [&](const char* what, const analysis::SpeedErrorRow* r) {
       if (r)
         fmt::print("  odeint / exact CPU time, {}: {:.0f} (tolerance {:.0e}, error {:.2e})\n", what, ratios.ratio(r),
                    r->tolerance, r->var_dE_error);

@@ -3,6 +3,7 @@
 #include "ranks.hpp"
 
 #include "billiards/geometry/input_error.hpp"
+#include "billiards/version.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
@@ -22,6 +23,7 @@ const std::string& command_line() { return the_command_line; }
 int main(int argc, char** argv) {
   CLI::App app{"billiard: exact geometry, dynamics and energy diffusion of billiards"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("billiard ") + billiards::version);
   billiards::cli::set_command_line(argc, argv);
   billiards::cli::add_info(app);
   billiards::cli::add_run(app);

@@ -16,9 +16,18 @@ namespace billiards::cli {
 
 namespace fs = std::filesystem;
 
+fs::path data_dir() {
+  if (const char* env = std::getenv("BILLIARDS_DATA")) return env;
+  std::error_code error;
+  const fs::path program = fs::read_symlink("/proc/self/exe", error);
+  const fs::path installed = program.parent_path() / BILLIARDS_DATA_FROM_BINDIR;
+  if (!error && fs::is_directory(installed / "scripts", error)) return installed.lexically_normal();
+  return BILLIARDS_SOURCE_DIR;
+}
+
 fs::path script_path(const std::string& name) {
   const char* env = std::getenv("BILLIARDS_SCRIPTS");
-  const fs::path script = fs::path(env ? env : BILLIARDS_SOURCE_DIR "/scripts") / name;
+  const fs::path script = (env ? fs::path(env) : data_dir() / "scripts") / name;
   if (!fs::is_regular_file(script))
     throw std::runtime_error(fmt::format("{} not found (set BILLIARDS_SCRIPTS to the directory that holds it)",
                                          script.string()));

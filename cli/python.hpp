@@ -1,4 +1,5 @@
-// Figures are drawn by matplotlib scripts in scripts/, started without a shell.
+// Figures are drawn by matplotlib scripts in scripts/, started without a shell; those scripts,
+// shapes and scenes are found in the source tree or an install prefix.
 #pragma once
 
 #include <filesystem>
@@ -7,7 +8,12 @@
 
 namespace billiards::cli {
 
-/// scripts/NAME: from $BILLIARDS_SCRIPTS, else the source tree this program was built from.
+/// The bundled data (shapes/, scenes/, scripts/): $BILLIARDS_DATA if set; else, for an
+/// installed program, PREFIX/share/billiards next to its bin/; else the source tree it was
+/// built from.
+std::filesystem::path data_dir();
+
+/// scripts/NAME: from $BILLIARDS_SCRIPTS, else data_dir()/scripts.
 std::filesystem::path script_path(const std::string& name);
 
 /// Runs PYTHON SCRIPT ARGS... directly (no shell, so any path is passed as it is) and waits;

@@ -1,9 +1,11 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """The paper's Fig. 2 from Python: the energy distribution of the driven clover at t = 10, 100,
 1000 for omega = 40 pi, histograms of a simulated ensemble against the Fokker-Planck prediction
 (analytic, eq. B4, and the numerical Chang-Cooper solution).
 
-    PYTHONPATH=build/python /usr/bin/python3 examples/paper_fig2.py [--particles N] [--output fig2.png]
+    python3 examples/paper_fig2.py [--particles N] [--output fig2.png]
+
+with billiardkit installed (docs/python.md), or PYTHONPATH=build/python.
 
 N = 4000 by default (about 8 s on 2 cores); the paper used --particles 100000.
 """
@@ -17,7 +19,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-import billiards  # noqa: E402
+import billiardkit as bk  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -34,22 +36,22 @@ def main():
 
     # The paper's setup is scenes/clover-driven.yaml (m = 1, E0 = 1/2, F = 10 along (1, 1)/sqrt 2);
     # here the same scene is written as a dict, with omega = 40 pi and the record times of the figure.
-    scene = billiards.load_scene({
+    scene = bk.load_scene({
         "shape": "shapes/clover.yaml",
         "parameters": {"F": 10, "omega": "40*pi"},
         "initial": {"microcanonical": {"energy": "1/2"}},
         "force": {"periodic": {"amplitude": ["F/sqrt(2)", "F/sqrt(2)"], "omega": "omega"}},
         "run": {"particles": args.particles, "time": max(times), "record": times, "seed": args.seed},
     }, base_dir=ROOT)
-    c = billiards.coefficients(scene)
+    c = bk.coefficients(scene)
     print(f"lambda = {c['mean_free_path']:.5g}, C = {c['C']:.5g}; running {scene.particles} particles to "
           f"t = {scene.time:g} ...")
 
-    run = billiards.run(scene, threads=args.threads)  # the GIL is released; the arrays are not copied
+    run = bk.run(scene, threads=args.threads)  # the GIL is released; the arrays are not copied
     print(f"{run['collisions'].sum()} collisions in {run['seconds']:.2f} s, {run['escaped'].sum()} escapes")
 
     s = c["C"] * np.array(times)
-    E_num, eta_num, _ = billiards.fokker_planck_numerical(s, scene.energy)
+    E_num, eta_num, _ = bk.fokker_planck_numerical(s, scene.energy)
     fig, axes = plt.subplots(1, len(times), figsize=(4.5 * len(times), 3.6))
     for ax, t, sk, eta in zip(np.atleast_1d(axes), times, s, eta_num):
         k = int(np.searchsorted(run["record_times"], t))
@@ -59,7 +61,7 @@ def main():
         ax.hist(E, bins=60, range=(0, top), weights=np.full(len(E), 60 / top / len(E)), color="#9ab",
                 label=f"simulation (N = {len(E)})")  # a density over all N particles, tail included
         grid = np.linspace(0, top, 600)[1:]
-        ax.plot(grid, billiards.fokker_planck_eta(grid, sk, scene.energy), "k-", lw=1.2, label="Fokker-Planck (B4)")
+        ax.plot(grid, bk.fokker_planck_eta(grid, sk, scene.energy), "k-", lw=1.2, label="Fokker-Planck (B4)")
         ax.plot(E_num, eta, "r--", lw=1, label="Fokker-Planck (numerical)")
         ax.set_xlim(0, top)
         ax.set_title(f"t = {t:g}")

@@ -1,16 +1,18 @@
-// The Python module `billiards` (pybind11): 2-D and 3-D shapes and scenes from files or dicts,
+// billiardkit._core, the compiled part of the Python package billiardkit (pybind11): 2-D and 3-D shapes and scenes from files or dicts,
 // their exact geometry and the theory's coefficients, the Fokker–Planck solutions, ensemble runs
 // and single trajectories.  It calls the same library functions as the `billiard` program, so the same
 // scene and seed give the same numbers, bit for bit.  Arrays come out as numpy arrays that own
 // the C++ buffers (no copies); runs release the GIL.
 #include "billiards/analysis/coefficients.hpp"
 #include "billiards/analysis/fokker_planck.hpp"
+#include "billiards/analysis/statistics.hpp"
 #include "billiards/dynamics/random.hpp"
 #include "billiards/dynamics/scene_run.hpp"
 #include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/shape_file.hpp"
 #include "billiards/geometry/shape_info.hpp"
 #include "billiards/geometry3/shape3_info.hpp"
+#include "billiards/version.hpp"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -223,26 +225,43 @@ py::tuple fokker_planck_numerical(const std::vector<double>& s, double E0, int d
 
 // --- dynamics ------------------------------------------------------------------------------
 
-py::dict run(const std::shared_ptr<Scene>& scene_ptr, int threads, bool verify) {
+/// Runs particles [0, n) in chunks of about a quarter of a second, so that between chunks Ctrl-C
+/// raises KeyboardInterrupt and progress(done, n) is called.  The chunks do not change the
+/// numbers: each particle has its own random stream and its own arithmetic.
+template <class Flight>
+void run_in_chunks(const Scene& scene, const Flight& flight, bool verify, int threads,
+                   dynamics::EnsembleResult& result, const py::object& progress) {
+  const auto table = dynamics::table_of<Flight>(scene);
+  const auto opt = dynamics::run_options<Flight>(scene, verify);
+  const auto initial = dynamics::initial_states(scene, table, flight);
+  const std::size_t n = scene.particles;
+  std::size_t chunk = 16 * std::size_t(threads);
+  for (std::size_t first = 0; first < n;) {
+    const std::size_t last = std::min(n, first + chunk);
+    const auto start = std::chrono::steady_clock::now();
+    {
+      py::gil_scoped_release unlocked;
+      dynamics::run_particles(table, flight, initial, opt, first, last, threads, result);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    first = last;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (!progress.is_none()) progress(first, n);
+    if (seconds < 0.1) chunk *= 2;
+    else if (seconds > 0.4) chunk = std::max(std::size_t(threads), chunk / 2);
+  }
+}
+
+py::dict run(const std::shared_ptr<Scene>& scene_ptr, int threads, bool verify, const py::object& progress) {
   const Scene& scene = *scene_ptr;
   if (threads <= 0) threads = omp_get_max_threads();
   const std::size_t n = scene.particles, m = scene.record_times.size();
   dynamics::EnsembleResult result;
   result.energies.resize(n * m);
   result.logs.resize(n);
-  double seconds = 0;
-  {
-    py::gil_scoped_release unlocked;
-    const auto start = std::chrono::steady_clock::now();
-    dynamics::with_flight(scene, [&](const auto& flight) {
-      using Flight = std::decay_t<decltype(flight)>;
-      const auto table = dynamics::table_of<Flight>(scene);
-      const auto opt = dynamics::run_options<Flight>(scene, verify);
-      dynamics::run_particles(table, flight, dynamics::initial_states(scene, table, flight), opt, 0, n, threads,
-                              result);
-    });
-    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
+  const auto start = std::chrono::steady_clock::now();
+  dynamics::with_flight(scene, [&](const auto& flight) { run_in_chunks(scene, flight, verify, threads, result, progress); });
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const double collisions = double(result.collisions());
   // collisions and escaped are strided views into the particle logs, which one capsule owns.
   auto* logs = new std::vector<dynamics::ParticleLog>(std::move(result.logs));
@@ -313,22 +332,28 @@ void def_shape_properties(py::class_<S, std::shared_ptr<S>>& c, int dimension, c
                              "The leading comment block of the shape file.")
       .def_property_readonly("parameters", [](const S& s) { return s.parameters; },
                              "Parameter values after overrides.")
-      .def("info", &info<S>, "Same as billiards.info(shape).")
-      .def("__repr__", [type](const S& s) { return fmt::format("<billiards.{} '{}'>", type, s.region.name); });
+      .def("info", &info<S>, "Same as billiardkit.info(shape).")
+      .def("__repr__", [type](const S& s) { return fmt::format("<billiardkit.{} '{}'>", type, s.region.name); });
 }
 
 }  // namespace
 
 }  // namespace billiards::python
 
-PYBIND11_MODULE(billiards, m) {
+PYBIND11_MODULE(_core, m) {
   using namespace billiards;
   using namespace billiards::python;
   m.doc() = "Billiards: exact geometry of 2-D tables and 3-D regions, deterministic ensembles of driven particles, "
             "and the energy-diffusion theory of Hodson & Jarzynski (the library behind the `billiard` program).";
+  m.attr("__version__") = billiards::version;
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  m.def("sample_moments", [](const std::vector<double>& x) {
+          const auto mo = analysis::sample_moments(x);
+          return py::make_tuple(mo.mean, mo.variance, mo.se_mean, mo.se_variance);
+        }, "x"_a, "(mean, unbiased variance, their standard errors) of a sample, as `billiard run` computes them.");
 
-  py::class_<Shape, std::shared_ptr<Shape>> shape2_class(m, "Shape", "A validated 2-D table (see load_shape).");
+  // dynamic_attr: billiardkit.load_shape notes where a shape came from, for Scene(shape, ...).
+  py::class_<Shape, std::shared_ptr<Shape>> shape2_class(m, "Shape", py::dynamic_attr(), "A validated 2-D table (see load_shape).");
   def_shape_properties(shape2_class, 2, "Shape");
   shape2_class.def("outline", [](const Shape& s, double arc_step) {
              py::list loops;
@@ -344,7 +369,7 @@ PYBIND11_MODULE(billiards, m) {
            "`billiard plot`; arcs get one every arc_step radians).");
 
   py::class_<Shape3, std::shared_ptr<Shape3>> shape3_class(
-      m, "Shape3", "A validated 3-D region: a polyhedron, a triangle mesh or a sphere, minus balls (see load_shape).");
+      m, "Shape3", py::dynamic_attr(), "A validated 3-D region: a polyhedron, a triangle mesh or a sphere, minus balls (see load_shape).");
   def_shape_properties(shape3_class, 3, "Shape3");
   shape3_class.def("mesh", &mesh_of,
              R"(The flat walls for drawing: (vertices (n, 3), triangles (m, 3) of vertex indices, counter-clockwise
@@ -355,6 +380,9 @@ with its own vertices); empty arrays for a sphere.)")
            "is inside, False for a ball (a hole).");
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene", "A shape, a force, particles and what to run (see load_scene).")
+      .def(py::init(&load_scene), "source"_a, py::kw_only(), "particles"_a = py::none(), "time"_a = py::none(),
+           "omega"_a = py::none(), "record"_a = py::none(), "seed"_a = py::none(), "set"_a = py::none(),
+           "base_dir"_a = py::none(), "name"_a = "scene dict", "Same as load_scene(source, ...).")
       .def_property_readonly("file", [](const Scene& s) { return s.file; })
       .def_property_readonly("text", [](const Scene& s) { return s.text; }, "The scene's YAML text.")
       .def_property_readonly("dimension", [](const Scene& s) { return s.dimension; })
@@ -375,7 +403,7 @@ with its own vertices); empty arrays for a sphere.)")
       .def_property_readonly("force", &force_of, "dict: kind (none, constant, periodic), amplitude, omega, phase.")
       .def_property_readonly("output_dir", [](const Scene& s) { return s.output_dir; })
       .def("__repr__", [](const Scene& s) {
-        return fmt::format("<billiards.Scene '{}': {} particles on '{}', force {}, t = 0 .. {}>", s.file, s.particles,
+        return fmt::format("<billiardkit.Scene '{}': {} particles on '{}', force {}, t = 0 .. {}>", s.file, s.particles,
                            s.shape_name(), s.force.name(), s.time);
       });
 
@@ -387,7 +415,7 @@ source: a shape file's path, or a dict with the file's keys ({"boundary": {"circ
 set: parameter overrides {NAME: value or expression}, like `--set NAME=VALUE`.
 base_dir: the folder a dict's `mesh:` file is relative to (default: the current directory).
 name: stands for the file in error messages when source is a dict.
-Raises billiards.InputError (a ValueError) naming file, line and problem.)");
+Raises billiardkit.InputError (a ValueError) naming file, line and problem.)");
 
   m.def("load_scene", &load_scene, "source"_a, py::kw_only(), "particles"_a = py::none(), "time"_a = py::none(),
         "omega"_a = py::none(), "record"_a = py::none(), "seed"_a = py::none(), "set"_a = py::none(),
@@ -398,7 +426,7 @@ source: a scene file's path, or a dict with the file's keys; a dict's `shape` pa
 is relative to base_dir (default: the current directory).
 particles, time, omega, record, seed, set: the overrides of `billiard run` (--particles, ...; record
 times get 0 and the end time added).
-Raises billiards.InputError naming file, line and problem.)");
+Raises billiardkit.InputError naming file, line and problem.)");
 
   m.def("info", [](const py::object& shape, const std::optional<py::dict>& set, const std::optional<py::object>& base_dir) {
           if (py::isinstance<Shape>(shape) || py::isinstance<Shape3>(shape)) return info_of(shape);
@@ -431,11 +459,13 @@ broadcasts over arrays.)");
 Euler), as `billiard fp`: returns (E, eta, edges): the cell centres (cells,), the cell averages
 (len(s), cells) at each s = C t (positive, increasing), and the cell edges (cells + 1,).)");
 
-  m.def("run", &run, "scene"_a, py::kw_only(), "threads"_a = 0, "verify"_a = false,
+  m.def("run", &run, "scene"_a, py::kw_only(), "threads"_a = 0, "verify"_a = false, "progress"_a = py::none(),
         R"(Runs the scene's ensemble, as `billiard run` does (same numbers for the same scene and seed,
-and for any number of threads), with the GIL released.
+and for any number of threads), with the GIL released.  billiardkit.run wraps this in a RunResult.
 
 threads: OpenMP threads (0: all cores).  verify: also check the midpoint of every free flight.
+progress: called as progress(done, particles) about every quarter second; Ctrl-C raises
+KeyboardInterrupt there.
 Returns a dict: record_times (m,), energies (N, m) (NaN after an escape), collisions (N,),
 escaped (N,), seconds, collisions_per_second, threads, prediction (coefficients or None).
 The arrays own the C++ buffers: nothing is copied.)");

@@ -1,7 +1,7 @@
-// Speed against error (bench/speed_error.hpp): the Odeint baseline against the exact flight,
+// Speed against error (analysis/speed_error.hpp): the Odeint baseline against the exact flight,
 // the exact flight against MPFR, and `billiard bench speed-error --quick`.
 #include "cli_helpers.hpp"
-#include "speed_error.hpp"
+#include "billiards/analysis/speed_error.hpp"
 
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/geometry.hpp"
@@ -52,8 +52,8 @@ TEST_CASE("Odeint at tight tolerance reproduces the exact flight's collisions") 
     std::size_t collisions = 0;
     for (std::uint64_t i = 0; i < 6; ++i) {
       const auto s0 = clover.initial(i);
-      const auto exact = bench::exact_run(clover.table, flight, s0, 6);
-      const auto ode = bench::odeint_run(clover.table, flight, s0, 6, 1e-12);
+      const auto exact = analysis::exact_run(clover.table, flight, s0, 6);
+      const auto ode = analysis::odeint_run(clover.table, flight, s0, 6, 1e-12);
       CHECK_FALSE(ode.escaped);
       REQUIRE(ode.bounces.size() == exact.bounces.size());
       for (std::size_t k = 0; k < exact.bounces.size(); ++k) {
@@ -77,8 +77,8 @@ TEST_CASE("Odeint at loose tolerance is measurably wrong at high frequency") {
   double worst = 0;
   for (std::uint64_t i = 0; i < 6; ++i) {
     const auto s0 = clover.initial(i);
-    const auto exact = bench::exact_run(clover.table, flight, s0, 6);
-    const auto ode = bench::odeint_run(clover.table, flight, s0, 6, 1e-3);
+    const auto exact = analysis::exact_run(clover.table, flight, s0, 6);
+    const auto ode = analysis::odeint_run(clover.table, flight, s0, 6, 1e-3);
     worst = std::max(worst, (ode.end.x - exact.end.x).norm());
   }
   CHECK(worst > 1e-3);
@@ -91,9 +91,9 @@ TEST_CASE("the exact flight agrees with a 100-bit MPFR evaluation of Appendix B"
     const auto flight = drive(omega);
     for (std::uint64_t i = 0; i < 5; ++i) {
       const auto s0 = clover.initial(i);
-      const auto exact = bench::exact_run(clover.table, flight, s0, 4);
+      const auto exact = analysis::exact_run(clover.table, flight, s0, 4);
       REQUIRE_FALSE(exact.bounces.empty());
-      const auto check = bench::mpfr_check(clover.table, flight, s0, exact, 4, 1);
+      const auto check = analysis::mpfr_check(clover.table, flight, s0, exact, 4, 1);
       REQUIRE(check.confirmed);
       CHECK((check.first_collision - exact.bounces[0].x).norm() < 1e-14);
       // A few collisions later, chaos has amplified rounding, but not beyond 1e-10.

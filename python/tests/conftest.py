@@ -1,7 +1,9 @@
-"""Fixtures shared by the tests of the Python module: the source tree and the `billiard` program.
+"""Fixtures shared by the tests of the Python package billiardkit: the source tree and the
+`billiard` program.
 
-ctest sets PYTHONPATH to the module's build folder and BILLIARDS_BINARY, BILLIARDS_SOURCE_DIR;
-run by hand: PYTHONPATH=build/python BILLIARDS_BINARY=build/cli/billiard /usr/bin/python3 -m pytest python/tests
+ctest (tests/package/check_python_package.py) installs billiardkit into a fresh venv and runs these
+tests there with BILLIARDS_BINARY and BILLIARDS_SOURCE_DIR set; by hand, against the CMake build:
+PYTHONPATH=build/python BILLIARDS_BINARY=build/cli/billiard /usr/bin/python3 -m pytest python/tests
 """
 import json
 import os

@@ -10,7 +10,7 @@ import time
 import numpy as np
 import pytest
 
-import billiards
+import billiardkit as bk
 from conftest import BINARY, billiard, billiard_json
 
 
@@ -21,7 +21,7 @@ def test_info_equals_cli(source, shape, set_):
     path = source / "shapes" / f"{shape}.yaml"
     sets = [a for k, v in set_.items() for a in ("--set", f"{k}={v}")]
     cli = billiard_json("info", path, *sets)
-    py = billiards.info(billiards.load_shape(path, set=set_))
+    py = bk.info(bk.load_shape(path, set=set_))
     for key in ("V", "S", "mean_free_path", "holes", "name", "parameters"):
         assert py[key] == cli[key], key
     assert np.array_equal(py["boundary_tensor"], np.array(cli["boundary_tensor"]))
@@ -29,7 +29,7 @@ def test_info_equals_cli(source, shape, set_):
 
 
 def test_shape_from_dict_has_the_closed_form_measures():
-    shape = billiards.load_shape({"parameters": {"L": 2}, "boundary": {"polygon": [[0, 0], ["L", 0], ["L", 1], [0, 1]]},
+    shape = bk.load_shape({"parameters": {"L": 2}, "boundary": {"polygon": [[0, 0], ["L", 0], ["L", 1], [0, 1]]},
                                   "holes": [{"circle": {"center": [1, 0.5], "radius": 0.25}}]})
     info = shape.info()
     V, S = 2 - math.pi / 16, 6 + math.pi / 2
@@ -41,14 +41,14 @@ def test_shape_from_dict_has_the_closed_form_measures():
 
 
 def test_bad_dict_raises_with_the_message(source):
-    with pytest.raises(billiards.InputError, match=r"shape dict:\d+: .*radius"):
-        billiards.load_shape({"boundary": {"circle": {"center": [0, 0], "radius": -1}}})
+    with pytest.raises(bk.InputError, match=r"shape dict:\d+: .*radius"):
+        bk.load_shape({"boundary": {"circle": {"center": [0, 0], "radius": -1}}})
     scene = clover_scene_dict()
     scene["force"] = {"periodc": {"amplitude": [1, 0], "omega": 100}}
     with pytest.raises(ValueError, match=r"scene dict:\d+: .*periodc"):
-        billiards.load_scene(scene, base_dir=source / "scenes")
-    with pytest.raises(billiards.InputError, match="cannot open"):
-        billiards.load_shape("no-such-shape.yaml")
+        bk.load_scene(scene, base_dir=source / "scenes")
+    with pytest.raises(bk.InputError, match="cannot open"):
+        bk.load_shape("no-such-shape.yaml")
 
 
 # --- theory --------------------------------------------------------------------------------
@@ -57,44 +57,44 @@ def test_bad_dict_raises_with_the_message(source):
 def test_coefficients_equal_cli(source, omega):
     scene_file = source / "scenes" / "clover-driven.yaml"
     cli = billiard_json("coeffs", scene_file, *(["--omega", omega] if omega else []))
-    scene = billiards.load_scene(scene_file, omega=None if omega is None else 320 * math.pi)
-    assert billiards.coefficients(scene) == cli
+    scene = bk.load_scene(scene_file, omega=None if omega is None else 320 * math.pi)
+    assert bk.coefficients(scene) == cli
     # The same from the shape and the drive.
     F = scene.force["amplitude"]
-    direct = billiards.coefficients(scene.shape, F=F, omega=scene.force["omega"], E=scene.energy)
+    direct = bk.coefficients(scene.shape, F=F, omega=scene.force["omega"], E=scene.energy)
     assert direct == cli
 
 
 def test_coefficients_need_a_drive(source):
-    with pytest.raises(billiards.InputError, match="periodic force"):
-        billiards.coefficients(billiards.load_scene(source / "scenes" / "clover-free.yaml"))
+    with pytest.raises(bk.InputError, match="periodic force"):
+        bk.coefficients(bk.load_scene(source / "scenes" / "clover-free.yaml"))
 
 
 def test_fokker_planck_numerical_against_analytic_and_cli(source, tmp_path):
     s = np.array([0.1, 1.0, 10.0])
-    E, eta, edges = billiards.fokker_planck_numerical(s, 0.5, cells=4000)
+    E, eta, edges = bk.fokker_planck_numerical(s, 0.5, cells=4000)
     assert eta.shape == (3, 4000) and E.shape == (4000,) and edges.shape == (4001,)
     assert np.allclose(E, (edges[1:] + edges[:-1]) / 2, rtol=1e-15)
     dE = np.diff(edges)
     for k, sk in enumerate(s):
-        exact = billiards.fokker_planck_eta(E, sk, 0.5)
+        exact = bk.fokker_planck_eta(E, sk, 0.5)
         assert np.sum(np.abs(eta[k] - exact) * dE) < 2e-3   # L1 distance
-        m = billiards.fokker_planck_moments(sk, 0.5)
+        m = bk.fokker_planck_moments(sk, 0.5)
         assert np.sum(E * exact * dE) == pytest.approx(m["mean"], rel=1e-3)
     # The scheme conserves the mass it starts from (the short-time law, normalized on the cells).
     mass = eta @ dE
     assert np.ptp(mass) < 1e-12 and mass[0] == pytest.approx(1, abs=1e-4)
     # `billiard fp` gives the same columns (C t = s for the scene's C).
-    scene = billiards.load_scene(source / "scenes" / "clover-driven.yaml")
-    C = billiards.coefficients(scene)["C"]
+    scene = bk.load_scene(source / "scenes" / "clover-driven.yaml")
+    C = bk.coefficients(scene)["C"]
     out = tmp_path / "fp.csv"
     billiard("fp", source / "scenes" / "clover-driven.yaml", "--times", "10,100", "--cells", 500, "-o", out)
     table = np.loadtxt(out, delimiter=",", skiprows=1)
-    E, eta, _ = billiards.fokker_planck_numerical([C * 10, C * 100], scene.energy, cells=500)
+    E, eta, _ = bk.fokker_planck_numerical([C * 10, C * 100], scene.energy, cells=500)
     assert np.allclose(table[:, 0], E, rtol=1e-9)
     assert np.allclose(table[:, 1], eta[0], rtol=1e-8, atol=1e-12)
     assert np.allclose(table[:, 3], eta[1], rtol=1e-8, atol=1e-12)
-    assert np.allclose(table[:, 2], billiards.fokker_planck_eta(E, C * 10, scene.energy), rtol=1e-8, atol=1e-12)
+    assert np.allclose(table[:, 2], bk.fokker_planck_eta(E, C * 10, scene.energy), rtol=1e-8, atol=1e-12)
 
 
 # --- runs ----------------------------------------------------------------------------------
@@ -115,7 +115,7 @@ def test_run_equals_cli_energies_byte_for_byte(source, tmp_path, scene_name):
              "--threads", 1)
     cli = np.load(out / "energies.npy")
     summary = json.loads((out / "summary.json").read_text())
-    result = billiards.run(billiards.load_scene(scene_file, particles=300, time=6, seed=7), threads=2)
+    result = bk.run(bk.load_scene(scene_file, particles=300, time=6, seed=7), threads=2)
     energies = result["energies"]
     assert energies.shape == cli.shape and energies.dtype == cli.dtype
     assert energies.tobytes() == cli.tobytes()
@@ -125,22 +125,22 @@ def test_run_equals_cli_energies_byte_for_byte(source, tmp_path, scene_name):
 
 
 def test_scene_from_dict_equals_scene_file(source):
-    from_file = billiards.run(billiards.load_scene(source / "scenes" / "clover-driven.yaml", particles=64, time=3))
-    from_dict = billiards.run(billiards.load_scene(clover_scene_dict(), particles=64, time=3,
+    from_file = bk.run(bk.load_scene(source / "scenes" / "clover-driven.yaml", particles=64, time=3))
+    from_dict = bk.run(bk.load_scene(clover_scene_dict(), particles=64, time=3,
                                                    base_dir=source / "scenes"))
     assert from_dict["energies"].tobytes() == from_file["energies"].tobytes()
 
 
 def test_thread_count_does_not_change_the_numbers(source):
-    scene = billiards.load_scene(source / "scenes" / "clover-driven.yaml", particles=203, time=8)
-    runs = [billiards.run(scene, threads=k) for k in (1, 2, 3)]
+    scene = bk.load_scene(source / "scenes" / "clover-driven.yaml", particles=203, time=8)
+    runs = [bk.run(scene, threads=k) for k in (1, 2, 3)]
     for r in runs[1:]:
         assert r["energies"].tobytes() == runs[0]["energies"].tobytes()
         assert np.array_equal(r["collisions"], runs[0]["collisions"])
 
 
 def test_arrays_own_the_cpp_buffers(source):
-    result = billiards.run(billiards.load_scene(source / "scenes" / "clover-free.yaml", particles=10, time=30))
+    result = bk.run(bk.load_scene(source / "scenes" / "clover-free.yaml", particles=10, time=30))
     for key in ("energies", "collisions", "escaped"):
         a = result[key]
         assert not a.flags.owndata and a.base is not None, key  # a capsule holds the C++ vector
@@ -152,7 +152,7 @@ def test_arrays_own_the_cpp_buffers(source):
 
 def test_run_releases_the_gil(source):
     """A second Python thread ticks during the middle of a run only if the run released the GIL."""
-    scene = billiards.load_scene(source / "scenes" / "clover-driven.yaml", particles=2000, time=600)
+    scene = bk.load_scene(source / "scenes" / "clover-driven.yaml", particles=2000, time=600)
     ticks, stop = [], threading.Event()
 
     def tick():
@@ -164,7 +164,7 @@ def test_run_releases_the_gil(source):
     ticker.start()
     time.sleep(0.02)
     t0 = time.perf_counter()
-    billiards.run(scene, threads=1)
+    bk.run(scene, threads=1)
     t1 = time.perf_counter()
     stop.set()
     ticker.join()
@@ -191,8 +191,8 @@ def distance_to_boundary(p, pieces):
 
 @pytest.mark.parametrize("scene_name", ["clover-driven", "clover-free"])
 def test_trajectory_points_lie_on_the_boundary(source, scene_name):
-    scene = billiards.load_scene(source / "scenes" / f"{scene_name}.yaml")
-    traj = billiards.trajectory(scene, collisions=200, particle=5)
+    scene = bk.load_scene(source / "scenes" / f"{scene_name}.yaml")
+    traj = bk.trajectory(scene, collisions=200, particle=5)
     x, v, t = traj["positions"], traj["velocities"], traj["times"]
     assert x.shape == (201, 2) and v.shape == (201, 2) and not traj["escaped"]
     assert (np.diff(t) >= 0).all() and traj["walls"][0] == -1 and (traj["walls"][1:] >= 0).all()
@@ -208,8 +208,8 @@ def test_trajectory_points_lie_on_the_boundary(source, scene_name):
 
 def test_trajectory_in_3d_hits_the_walls(source):
     """The 3-D Sinai billiard: the unit cube [-1/2, 1/2]^3 minus a ball of radius 1/4 at its centre."""
-    scene = billiards.load_scene(source / "scenes" / "sinai3-driven.yaml")
-    traj = billiards.trajectory(scene, collisions=100, particle=2)
+    scene = bk.load_scene(source / "scenes" / "sinai3-driven.yaml")
+    traj = bk.trajectory(scene, collisions=100, particle=2)
     x = traj["positions"][1:]
     assert x.shape == (100, 3) and not traj["escaped"]
     on_cube = np.abs(np.max(np.abs(x), axis=1) - 0.5) < 1e-12   # L = 1
@@ -219,16 +219,16 @@ def test_trajectory_in_3d_hits_the_walls(source):
 
 def test_trajectory_is_the_runs_particle(source):
     """The collisions of particle i before the end time are those `run` counts for it."""
-    scene = billiards.load_scene(source / "scenes" / "clover-driven.yaml", particles=20, time=20)
-    counts = billiards.run(scene)["collisions"]
+    scene = bk.load_scene(source / "scenes" / "clover-driven.yaml", particles=20, time=20)
+    counts = bk.run(scene)["collisions"]
     for i in (0, 7, 19):
-        times = billiards.trajectory(scene, collisions=int(counts[i]) + 10, particle=i)["times"]
+        times = bk.trajectory(scene, collisions=int(counts[i]) + 10, particle=i)["times"]
         assert np.count_nonzero(times[1:] <= scene.time) == counts[i]
 
 
 @pytest.mark.parametrize("shape", ["clover", "sinai", "mushroom"])
 def test_outline_lies_on_the_boundary_and_encloses_the_area(source, shape):
-    shape = billiards.load_shape(source / "shapes" / f"{shape}.yaml")
+    shape = bk.load_shape(source / "shapes" / f"{shape}.yaml")
     info = shape.info()
     loops = shape.outline()
     assert len(loops) == 1 + info["holes"]
@@ -241,8 +241,8 @@ def test_outline_lies_on_the_boundary_and_encloses_the_area(source, shape):
 
 
 def test_free_trajectory_in_a_square_reflects_specularly():
-    square = billiards.load_shape({"boundary": {"polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]}})
-    traj = billiards.trajectory(square, collisions=50, seed=3)
+    square = bk.load_shape({"boundary": {"polygon": [[0, 0], [1, 0], [1, 1], [0, 1]]}})
+    traj = bk.trajectory(square, collisions=50, seed=3)
     v = traj["velocities"]
     # Reflections off axis-parallel walls keep |vx| and |vy|.
     assert np.allclose(np.abs(v), np.abs(v[0]), rtol=1e-14)
@@ -262,7 +262,7 @@ def test_example_script_writes_a_png(source, tmp_path):
 
 @pytest.mark.parametrize("shape_file", ["shapes/clover.yaml", "shapes/3d/sinai3.yaml", "shapes/3d/l-prism.yaml"])
 def test_plot_draws_the_modules_trajectory(source, tmp_path, shape_file):
-    """`billiard plot --trajectory K --seed S` draws the points of billiards.trajectory(shape,
+    """`billiard plot --trajectory K --seed S` draws the points of bk.trajectory(shape,
     seed=S): a stand-in drawing script (BILLIARDS_SCRIPTS) saves the data it is handed."""
     for name in ("plot_shape.py", "plot_shape3.py"):
         (tmp_path / name).write_text("import shutil, sys\nshutil.copy(sys.argv[1], sys.argv[1] + '.kept')\n"
@@ -273,6 +273,6 @@ def test_plot_draws_the_modules_trajectory(source, tmp_path, shape_file):
     assert done.returncode == 0, done.stderr
     (kept,) = tmp_path.glob("billiard-plot-*.json.kept")
     drawn = np.array(json.loads(kept.read_text())["trajectory"])
-    walk = billiards.trajectory(billiards.load_shape(source / shape_file), collisions=40, seed=7)
+    walk = bk.trajectory(bk.load_shape(source / shape_file), collisions=40, seed=7)
     assert not walk["escaped"]
     np.testing.assert_array_equal(drawn, walk["positions"])

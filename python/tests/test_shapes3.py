@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-import billiards
+import billiardkit as bk
 from conftest import billiard, billiard_json
 
 SHAPES3 = ["cube", "ball", "sinai3", "octahedron", "l-prism"]
@@ -25,8 +25,8 @@ def test_info_equals_cli(source, name, set_):
     path = shape3_path(source, name)
     sets = [a for k, v in set_.items() for a in ("--set", f"{k}={v}")]
     cli = billiard_json("info", path, *sets)
-    shape = billiards.load_shape(path, set=set_)
-    assert isinstance(shape, billiards.Shape3) and shape.dimension == 3
+    shape = bk.load_shape(path, set=set_)
+    assert isinstance(shape, bk.Shape3) and shape.dimension == 3
     py = shape.info()
     assert set(py) == set(cli) | {"description"}
     for key, value in cli.items():
@@ -35,16 +35,16 @@ def test_info_equals_cli(source, name, set_):
         else:
             assert py[key] == value, key
     assert py["boundary_tensor"].shape == (3, 3) and py["bbox"].shape == (2, 3)
-    assert billiards.info(path, set=set_)["V"] == cli["V"]  # from the path directly
+    assert bk.info(path, set=set_)["V"] == cli["V"]  # from the path directly
 
 
 def test_dimension_picks_the_type(source):
-    flat = billiards.load_shape(source / "shapes" / "clover.yaml")
-    assert isinstance(flat, billiards.Shape) and flat.dimension == 2
-    solid = billiards.load_shape({"dimension": 3, "boundary": {"sphere": {"center": [0, 0, 0], "radius": 2}}})
-    assert isinstance(solid, billiards.Shape3) and solid.name == "shape dict"
+    flat = bk.load_shape(source / "shapes" / "clover.yaml")
+    assert isinstance(flat, bk.Shape) and flat.dimension == 2
+    solid = bk.load_shape({"dimension": 3, "boundary": {"sphere": {"center": [0, 0, 0], "radius": 2}}})
+    assert isinstance(solid, bk.Shape3) and solid.name == "shape dict"
     assert solid.info()["V"] == pytest.approx(32 * math.pi / 3, rel=1e-15)
-    assert repr(solid) == "<billiards.Shape3 'shape dict'>"
+    assert repr(solid) == "<billiardkit.Shape3 'shape dict'>"
 
 
 def drawn_measures(shape):
@@ -69,7 +69,7 @@ def drawn_measures(shape):
 
 @pytest.mark.parametrize("name", SHAPES3)
 def test_drawn_geometry_has_the_shapes_measures(source, name):
-    shape = billiards.load_shape(shape3_path(source, name))
+    shape = bk.load_shape(shape3_path(source, name))
     info = shape.info()
     V, S, T = drawn_measures(shape)
     assert V == pytest.approx(info["V"], rel=1e-13)
@@ -85,21 +85,21 @@ def test_drawn_geometry_has_the_shapes_measures(source, name):
 
 
 def test_spheres_are_those_of_the_file(source):
-    (ball,) = billiards.load_shape(shape3_path(source, "ball")).spheres()
+    (ball,) = bk.load_shape(shape3_path(source, "ball")).spheres()
     assert ball["outer"] and ball["radius"] == 1 and np.array_equal(ball["center"], [0, 0, 0])
-    assert billiards.load_shape(shape3_path(source, "ball")).mesh()[0].shape == (0, 3)
-    sinai3 = billiards.load_shape(shape3_path(source, "sinai3"), set={"R": 0.3})
+    assert bk.load_shape(shape3_path(source, "ball")).mesh()[0].shape == (0, 3)
+    sinai3 = bk.load_shape(shape3_path(source, "sinai3"), set={"R": 0.3})
     (hole,) = sinai3.spheres()
     assert not hole["outer"] and hole["radius"] == 0.3
-    assert len(billiards.load_shape(shape3_path(source, "cube")).spheres()) == 0
+    assert len(bk.load_shape(shape3_path(source, "cube")).spheres()) == 0
 
 
 def test_mesh_dict_is_read_relative_to_base_dir(source):
-    shape = billiards.load_shape({"dimension": 3, "boundary": {"mesh": "l-prism.off"}},
+    shape = bk.load_shape({"dimension": 3, "boundary": {"mesh": "l-prism.off"}},
                                  base_dir=source / "shapes" / "3d")
     assert shape.info()["V"] == pytest.approx(6, rel=1e-14)  # the file's comment: V = 6, S = 22
-    with pytest.raises(billiards.InputError, match=r"shape dict:\d+: .*l-prism\.off"):
-        billiards.load_shape({"dimension": 3, "boundary": {"mesh": "l-prism.off"}}, base_dir=source)
+    with pytest.raises(bk.InputError, match=r"shape dict:\d+: .*l-prism\.off"):
+        bk.load_shape({"dimension": 3, "boundary": {"mesh": "l-prism.off"}}, base_dir=source)
 
 
 def line_of(d, text):
@@ -110,28 +110,28 @@ def line_of(d, text):
 
 def test_malformed_3d_dicts_raise_with_file_line_and_reason():
     bad_box = {"dimension": 3, "boundary": {"box": {"min": [0, 0, 0], "max": [1, 1]}}}
-    with pytest.raises(billiards.InputError, match=rf"^shape dict:{line_of(bad_box, 'max')}: expected a vector \[x, y, z\]"):
-        billiards.load_shape(bad_box)
+    with pytest.raises(bk.InputError, match=rf"^shape dict:{line_of(bad_box, 'max')}: expected a vector \[x, y, z\]"):
+        bk.load_shape(bad_box)
     ball_outside = {"dimension": 3, "boundary": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}},
                     "holes": [{"ball": {"center": [0.9, 0.5, 0.5], "radius": 0.2}}]}
-    with pytest.raises(billiards.InputError, match=r"^shape dict:\d+: this ball crosses or touches the plane"):
-        billiards.load_shape(ball_outside)
+    with pytest.raises(bk.InputError, match=r"^shape dict:\d+: this ball crosses or touches the plane"):
+        bk.load_shape(ball_outside)
     four = {"dimension": 4, "boundary": {"sphere": {"center": [0, 0, 0], "radius": 1}}}
-    with pytest.raises(billiards.InputError, match=rf"^shape dict:{line_of(four, 'dimension')}: 'dimension' must be 2 or 3"):
-        billiards.load_shape(four)
-    with pytest.raises(billiards.InputError, match=r"^shape dict:\d+: .*radius"):
-        billiards.load_shape({"dimension": 3, "boundary": {"sphere": {"center": [0, 0, 0], "radius": -1}}})
-    with pytest.raises(billiards.InputError, match="octopus"):
-        billiards.load_shape({"dimension": 3, "boundary": {"octopus": 1}})
+    with pytest.raises(bk.InputError, match=rf"^shape dict:{line_of(four, 'dimension')}: 'dimension' must be 2 or 3"):
+        bk.load_shape(four)
+    with pytest.raises(bk.InputError, match=r"^shape dict:\d+: .*radius"):
+        bk.load_shape({"dimension": 3, "boundary": {"sphere": {"center": [0, 0, 0], "radius": -1}}})
+    with pytest.raises(bk.InputError, match="octopus"):
+        bk.load_shape({"dimension": 3, "boundary": {"octopus": 1}})
 
 
 # --- scenes --------------------------------------------------------------------------------
 
 def test_scene_shape_in_3d(source):
-    scene = billiards.load_scene(source / "scenes" / "sinai3-driven.yaml")
+    scene = bk.load_scene(source / "scenes" / "sinai3-driven.yaml")
     shape = scene.shape
-    assert isinstance(shape, billiards.Shape3) and shape.name == "sinai3"
-    expected = billiards.load_shape(shape3_path(source, "sinai3")).info()
+    assert isinstance(shape, bk.Shape3) and shape.name == "sinai3"
+    expected = bk.load_shape(shape3_path(source, "sinai3")).info()
     del scene
     gc.collect()  # the shape is a view that keeps the scene alive
     info = shape.info()
@@ -141,12 +141,12 @@ def test_scene_shape_in_3d(source):
 def test_coefficients_in_3d_equal_cli(source):
     scene_file = source / "scenes" / "sinai3-driven.yaml"
     cli = billiard_json("coeffs", scene_file)
-    scene = billiards.load_scene(scene_file)
-    assert cli["dimension"] == 3 and billiards.coefficients(scene) == cli
+    scene = bk.load_scene(scene_file)
+    assert cli["dimension"] == 3 and bk.coefficients(scene) == cli
     F = scene.force["amplitude"]
-    assert billiards.coefficients(scene.shape, F=F, omega=scene.force["omega"], E=scene.energy) == cli
+    assert bk.coefficients(scene.shape, F=F, omega=scene.force["omega"], E=scene.energy) == cli
     with pytest.raises(ValueError, match="F must have 3 components"):
-        billiards.coefficients(scene.shape, F=[1, 0], omega=1, E=1)
+        bk.coefficients(scene.shape, F=[1, 0], omega=1, E=1)
 
 
 def free_l_prism_scene(source):
@@ -161,7 +161,7 @@ def test_free_3d_run_equals_cli(source, tmp_path):
     billiard("run", scene_file, "--out", out, "--no-csv", "--quiet", "--threads", 1)
     cli = np.load(out / "energies.npy")
     summary = json.loads((out / "summary.json").read_text())
-    result = billiards.run(billiards.load_scene(scene_file), threads=2)
+    result = bk.run(bk.load_scene(scene_file), threads=2)
     assert result["energies"].tobytes() == cli.tobytes()
     assert int(result["collisions"].sum()) == summary["collisions"] > 0
     assert not result["escaped"].any()
@@ -204,19 +204,19 @@ def check_on_the_walls(traj, shape, collisions):
 
 
 def test_free_trajectory_in_a_3d_scene_stays_on_the_walls_at_constant_speed(source):
-    scene = billiards.load_scene(free_l_prism_scene(source))
-    traj = billiards.trajectory(scene, collisions=300, particle=4)
+    scene = bk.load_scene(free_l_prism_scene(source))
+    traj = bk.trajectory(scene, collisions=300, particle=4)
     speed = check_on_the_walls(traj, scene.shape, 300)
     assert np.allclose(speed, 2, rtol=1e-14)  # E = 2, m = 1
 
 
 @pytest.mark.parametrize("name", ["octahedron", "ball", "sinai3"])
 def test_free_trajectory_in_a_shape3(source, name):
-    shape = billiards.load_shape(shape3_path(source, name))
-    traj = billiards.trajectory(shape, collisions=200, seed=5, speed=3)
+    shape = bk.load_shape(shape3_path(source, name))
+    traj = bk.trajectory(shape, collisions=200, seed=5, speed=3)
     speed = check_on_the_walls(traj, shape, 200)
     assert np.allclose(speed, 3, rtol=1e-14)
-    again = billiards.trajectory(shape, collisions=200, seed=5, speed=3)
+    again = bk.trajectory(shape, collisions=200, seed=5, speed=3)
     assert again["positions"].tobytes() == traj["positions"].tobytes()
-    other = billiards.trajectory(shape, collisions=200, seed=5, particle=1, speed=3)
+    other = bk.trajectory(shape, collisions=200, seed=5, particle=1, speed=3)
     assert not np.array_equal(other["positions"][0], traj["positions"][0])

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace billiards::bench {
+namespace billiards::analysis {
 
 using dynamics::PeriodicDriveFlight;
 using dynamics::Table;
@@ -98,4 +98,4 @@ struct SpeedRatios {
 };
 SpeedRatios speed_ratios(const std::vector<SpeedErrorRow>& rows);
 
-}  // namespace billiards::bench
+}  // namespace billiards::analysis

@@ -1,4 +1,4 @@
-#include "speed_error.hpp"
+#include "billiards/analysis/speed_error.hpp"
 
 #include "billiards/analysis/statistics.hpp"
 #include "billiards/dynamics/collision.hpp"
@@ -14,7 +14,7 @@
 #include <ctime>
 #include <limits>
 
-namespace billiards::bench {
+namespace billiards::analysis {
 
 namespace {
 
@@ -308,4 +308,4 @@ SpeedRatios speed_ratios(const std::vector<SpeedErrorRow>& rows) {
   return out;
 }
 
-}  // namespace billiards::bench
+}  // namespace billiards::analysis
