@@ -1,4 +1,4 @@
-// Kick statistics of the driven 3-D Sinai billiard, m = 1 (README "3-D shapes": the excess of
+// Kick statistics of the driven 3-D Sinai billiard, m = 1 (docs/3d.md, "The Sinai tables' excess of Var ΔE": the excess of
 // Var ΔE, an echo between parallel walls).  In the oscillating frame w = v − (F/mω) sin θ(t)
 // the velocity is constant in flight, so ε = ½m|w|² changes only at collisions, by the kick
 // κ = 2m(a + b)b with a = w·n, b = (F·n/mω) sin θ; with Δt a whole number of drive periods

@@ -1,6 +1,6 @@
 // Kicks of the driven 3-D Sinai billiard (the cube minus a ball) and the echo between parallel
-// faces that makes Var ΔE differ from g2 Δt there (README "3-D shapes"): shared by
-// bench_sinai3_kicks and tests/test_driven3.cpp.  Mass 1.
+// faces that makes Var ΔE differ from g2 Δt there (docs/3d.md, "The Sinai tables' excess of
+// Var ΔE"): shared by bench_sinai3_kicks and tests/test_driven3.cpp.  Mass 1.
 #pragma once
 
 #include "billiards/dynamics3/table3.hpp"

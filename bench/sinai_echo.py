@@ -6,7 +6,7 @@ Along free paths (the module's `trajectory`), every three hits p, m, q on the tw
 one axis with no scatterer hit between (so equal flight times before and after m) add
 -4 w^2 F_a^2 J2(2 |F_a| L / w^2) / omega^2 to Var dE (w the normal speed at m, L = 1); the
 theory's g2 dt is the sum of 2 w^2 (F.n)^2 / omega^2 over all hits.  Prints their ratio, the
-relative correction to Var dE, which does not depend on omega (README "3-D shapes").  With
+relative correction to Var dE, which does not depend on omega (docs/3d.md, "The Sinai tables' excess of Var ΔE").  With
 --window DT only triples within one interval [j DT, (j + 1) DT) count, as in an ensemble run over DT.
 
   PYTHONPATH=build/python bench/sinai_echo.py shapes/sinai.yaml --F 10 --window 10

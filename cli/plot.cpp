@@ -1,4 +1,4 @@
-// billiard plot SHAPE -o shape.png [--trajectory K]: draws a shape and a free trajectory.
+// billiard plot SHAPE -o shape.png|.pdf|.svg [--trajectory K]: draws a shape and a free trajectory.
 // The geometry and the trajectory are computed here, so the picture shows exactly the walls
 // the dynamics uses; matplotlib (scripts/plot_shape.py) only draws the points it is given.
 #include "commands.hpp"
@@ -103,6 +103,13 @@ nlohmann::json shape3_data(const std::string& path, const Overrides& set, int co
   return {{"dimension", 3}, {"title", title}, {"faces", faces}, {"spheres", spheres}, {"trajectory", trajectory}};
 }
 
+/// The picture's format is its extension's: png, pdf or svg (matplotlib writes all three).
+void check_format(const fs::path& output) {
+  const std::string ext = output.extension().string();
+  if (ext != ".png" && ext != ".pdf" && ext != ".svg")
+    throw InputError("-o", 0, fmt::format("'{}': the picture's extension must be .png, .pdf or .svg", output.string()));
+}
+
 /// Removes its file when it goes out of scope, so no exit path leaves temporaries behind.
 struct TempFile {
   fs::path path;
@@ -116,6 +123,7 @@ struct TempFile {
 /// is renamed into place only on success, so `output` is either the complete picture or
 /// untouched.
 void draw(const nlohmann::json& data, const fs::path& output) {
+  check_format(output);
   const fs::path script = script_path(data.value("dimension", 2) == 3 ? "plot_shape3.py" : "plot_shape.py");
   const TempFile json{fs::temp_directory_path() / fmt::format("billiard-plot-{}.json", getpid())};
   std::ofstream out(json.path);
@@ -123,15 +131,15 @@ void draw(const nlohmann::json& data, const fs::path& output) {
   out.close();
   if (!out) throw std::runtime_error("cannot write " + json.path.string());
   if (output.has_parent_path()) fs::create_directories(output.parent_path());
-  const TempFile png{fs::path(output.string() + fmt::format(".tmp-{}.png", getpid()))};
-  run_python(script, {json.path.string(), png.path.string()});
-  fs::rename(png.path, output);
+  const TempFile picture{fs::path(output.string() + fmt::format(".tmp-{}{}", getpid(), output.extension().string()))};
+  run_python(script, {json.path.string(), picture.path.string()});
+  fs::rename(picture.path, output);
 }
 
 }  // namespace
 
 void add_plot(CLI::App& app) {
-  auto* cmd = app.add_subcommand("plot", "Draw a shape (PNG), optionally with a free trajectory");
+  auto* cmd = app.add_subcommand("plot", "Draw a shape (PNG, PDF or SVG), optionally with a free trajectory");
   struct Args {
     std::string shape, output;
     int trajectory = 0;
@@ -140,7 +148,7 @@ void add_plot(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("shape", args->shape, "shape file (YAML)")->required();
-  cmd->add_option("-o,--output", args->output, "PNG file to write")->required();
+  cmd->add_option("-o,--output", args->output, "picture to write: FILE.png, FILE.pdf or FILE.svg")->required();
   cmd->add_option("--trajectory", args->trajectory, "draw a free trajectory of K collisions")
       ->check(CLI::Range(0, std::numeric_limits<int>::max()));
   cmd->add_option("--seed", args->seed, "seed of the trajectory's initial condition");

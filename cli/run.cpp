@@ -134,12 +134,23 @@ nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coeff
   const std::size_t m = scene.record_times.size();
   nlohmann::json per_time = nlohmann::json::array();
   for (std::size_t k = 0; k < m; ++k) {
+    const double t = scene.record_times[k];
     nlohmann::json s = delta_stats(r.energy_changes(k, m));
-    s["t"] = scene.record_times[k];
+    s["t"] = t;
+    if (prediction) {
+      s["g1_t"] = prediction->g1 * t;
+      s["g2_t"] = prediction->g2 * t;
+    }
+    if (prediction && prediction->closed_form) {  // the exact Fokker–Planck moments, for the figures
+      const auto fp = t > 0 ? analysis::fokker_planck_exact_moments(prediction->C * t, scene.energy, prediction->dimension)
+                            : analysis::EnergyMoments{scene.energy, 0, 0};
+      s["fp_mean_dE"] = fp.mean - scene.energy;
+      s["fp_var_dE"] = fp.variance;
+    }
     per_time.push_back(s);
   }
-  nlohmann::json j = per_time.back();
-  j.erase("t");
+  nlohmann::json j = per_time.back();  // the end time's moments, and its fp_* keys
+  for (const char* key : {"t", "g1_t", "g2_t"}) j.erase(key);
   j.update({{"scene", scene.file}, {"scene_text", scene.text}, {"command", command_line()},
             {"dimension", scene.dimension}, {"shape", scene.shape_name()},
             {"shape_parameters", scene.shape_parameters()}, {"force", scene.force.name()},
@@ -157,13 +168,9 @@ nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coeff
     j["var_dE_deviation_se"] = (j["var_dE"].get<double>() - c.g2 * scene.time) / j["se_var_dE"].get<double>();
   }
   if (prediction && prediction->closed_form) {
-    const auto& c = *prediction;
-    // The exact Fokker–Planck moments at the end time (they include the growth of g1, g2 with E).
-    const auto fp = analysis::fokker_planck_exact_moments(c.C * scene.time, scene.energy, c.dimension);
-    j["fp_mean_dE"] = fp.mean - scene.energy;
-    j["fp_var_dE"] = fp.variance;
+    // From the exact Fokker–Planck moments at the end time (they include the growth of g1, g2 with E).
     j["mean_dE_fp_deviation_se"] = (j["mean_dE"].get<double>() - j["fp_mean_dE"].get<double>()) / j["se_mean_dE"].get<double>();
-    j["var_dE_fp_deviation_se"] = (j["var_dE"].get<double>() - fp.variance) / j["se_var_dE"].get<double>();
+    j["var_dE_fp_deviation_se"] = (j["var_dE"].get<double>() - j["fp_var_dE"].get<double>()) / j["se_var_dE"].get<double>();
   }
   return j;
 }

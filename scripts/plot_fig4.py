@@ -10,20 +10,20 @@ import math
 import os
 import sys
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import plot_common  # noqa: E402
+from plot_common import UNITS, plt  # noqa: E402
 
 
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     out, runs = sys.argv[1], sys.argv[2:]
-    rows = []
+    rows, first = [], None
     for run in runs:
         with open(os.path.join(run, "summary.json")) as f:
             s = json.load(f)
+        first = first or s
         p, T = s["prediction"], s["time"]
         rows.append((s["omega"], s["mean_dE"], s["se_mean_dE"], p["g1"] * T, s["fp_mean_dE"],
                      s["var_dE"], s["se_var_dE"], p["g2"] * T, s["fp_var_dE"], s["particles"]))
@@ -33,21 +33,25 @@ def main():
         for r in rows:
             f.write(",".join(f"{x:.10g}" for x in r) + "\n")
     w = [r[0] / math.pi for r in rows]
-    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
-    for ax, i, label in ((axes[0], 1, r"$\langle\Delta E\rangle$"), (axes[1], 5, r"Var$(\Delta E)$")):
+    fig, axes = plt.subplots(1, 2, figsize=(10.5, 4.2))
+    for ax, i, name in ((axes[0], 1, "⟨ΔE⟩"), (axes[1], 5, "Var ΔE")):
         ax.errorbar(w, [r[i] for r in rows], yerr=[r[i + 1] for r in rows], fmt="o", ms=4, capsize=2,
-                    label="simulation")
-        ax.plot(w, [r[i + 2] for r in rows], "k-", lw=1, label=r"$g\,\Delta t$ (theory)")
+                    label="simulation (error bars: 1 SE)", zorder=3)
+        ax.plot(w, [r[i + 3] for r in rows], "-", color="black", lw=2.2, alpha=0.35,
+                label="Fokker–Planck, exact moments", zorder=1)
+        ax.plot(w, [r[i + 2] for r in rows], "--", color="tab:red", lw=1.1,
+                label=f"short time: {'g1' if i == 1 else 'g2'} Δt", zorder=2)
         ax.set_xscale("log", base=2)
         ax.set_yscale("log")
-        ax.set_xlabel(r"$\omega/\pi$")
-        ax.set_ylabel(label)
+        ax.set_xlabel("drive frequency ω/π")
+        ax.set_ylabel(f"{name} at Δt = {first['time']:g}\n(ΔE = E(Δt) − E(0), {UNITS})")
         ax.legend(fontsize=8)
-    fig.suptitle(f"clover, E0 = 1/2, F = 10, dt = 20, N = {rows[0][-1]} per frequency")
+    title = plot_common.scene_title(first).split(":")[0]
+    F = math.hypot(*first["F"])
+    fig.suptitle(f"{title}: F = {F:.4g}, E0 = {first['E0']:g}, Δt = {first['time']:g}, "
+                 f"N = {rows[0][-1]} per frequency", fontsize=11)
     fig.tight_layout()
-    tmp = os.path.join(out, "fig4.tmp.png")
-    fig.savefig(tmp, dpi=120)
-    os.replace(tmp, os.path.join(out, "fig4.png"))
+    plot_common.save(fig, os.path.join(out, "fig4.png"))
 
 
 if __name__ == "__main__":

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Draws a shape (and a trajectory) from the JSON written by `billiard plot`.
 
-    plot_shape.py INPUT.json OUTPUT.png
+    plot_shape.py INPUT.json OUTPUT.png|OUTPUT.pdf|OUTPUT.svg
 
 INPUT.json: {"title": str, "loops": [[[x, y], ...], ...] (outer boundary first, then the
 holes, each a closed polyline without its repeated first point), "trajectory": [[x, y], ...]
@@ -45,7 +45,8 @@ def draw_trajectory(ax, points):
     ax.plot(xs, ys, "-", color=PATH, lw=lw, alpha=alpha, zorder=2)
     if bounces <= MAX_MARKED_BOUNCES:
         ax.plot(xs[1:], ys[1:], "o", color=PATH, ms=2.2, zorder=3)
-    ax.plot(xs[:1], ys[:1], "o", color=PATH, mec="white", mew=1, ms=7, zorder=4)
+    ax.plot(xs[:1], ys[:1], "o", color=PATH, mec="white", mew=1, ms=7, zorder=4, label="start")
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
 
 
 def figure_for(loops):
@@ -70,12 +71,16 @@ def main():
     ax.autoscale_view()
     ax.margins(0.04)
     ax.tick_params(labelsize=8, colors="#555555")
+    ax.set_xlabel("x (length units of the shape file)", fontsize=8)
+    ax.set_ylabel("y", fontsize=8)
     for side in ax.spines.values():
         side.set_color("#bbbbbb")
     ax.set_title(data["title"], fontsize=10)
+    output = sys.argv[2]
+    ext = output.rsplit(".", 1)[-1].lower()  # `billiard plot` allows png, pdf and svg
     try:
         # Cropped to the drawing: the figure size only sets the scale.
-        fig.savefig(sys.argv[2], dpi=150, format="png", bbox_inches="tight", pad_inches=0.1)
+        fig.savefig(output, dpi=150, format=ext, bbox_inches="tight", pad_inches=0.1)
     except OSError as e:
         sys.exit(f"plot_shape.py: cannot write {sys.argv[2]}: {e.strerror}")
 

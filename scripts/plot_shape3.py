@@ -51,9 +51,12 @@ def perspective(ax, data):
     ax.set_ylim(mid[1] - half, mid[1] + half)
     ax.set_zlim(mid[2] - half, mid[2] + half)
     ax.set_box_aspect((1, 1, 1))
-    ax.set_xlabel("x")
-    ax.set_ylabel("y")
-    ax.set_zlabel("z")
+    if len(path):
+        ax.plot(path[:1, 0], path[:1, 1], path[:1, 2], "o", color=PATH, ms=5)
+    for axis, name in ((ax.xaxis, "x"), (ax.yaxis, "y"), (ax.zaxis, "z")):  # labels clear of the ticks
+        axis.set_label_text(name)
+        axis.labelpad = 10
+    ax.tick_params(labelsize=7)
 
 
 def projection(ax, data, i, j):
@@ -66,6 +69,9 @@ def projection(ax, data, i, j):
     path = np.array(data["trajectory"])
     if len(path):
         ax.plot(path[:, i], path[:, j], "-", color=PATH, lw=0.6, alpha=0.7)
+        ax.plot(path[:1, i], path[:1, j], "o", color=PATH, mec="white", mew=1, ms=6, label="trajectory's start")
+        ax.legend(fontsize=7, loc="upper right", framealpha=0.9)
+    ax.set_title(f"projection on the {'xyz'[i]}{'xyz'[j]} plane", fontsize=9)
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.set_xlabel("xyz"[i])
@@ -83,7 +89,7 @@ def main():
         projection(fig.add_subplot(2, 2, k + 2), data, i, j)
     fig.suptitle(data["title"], fontsize=10)
     fig.tight_layout()
-    fig.savefig(sys.argv[2], dpi=110)
+    fig.savefig(sys.argv[2], dpi=110)  # the format is the extension's: png, pdf or svg
 
 
 if __name__ == "__main__":

@@ -46,6 +46,18 @@ TEST_CASE("plot writes a PNG of the shape and its trajectory, and nothing on err
   CHECK_FALSE(fs::exists(dir / "bad.png"));
 }
 
+TEST_CASE("plot writes the format its -o extension names, and refuses other extensions") {
+  const auto dir = scratch("plot-formats");
+  REQUIRE(billiard("plot shapes/square.yaml -o " + (dir / "square.svg").string()).status == 0);
+  CHECK(read_file(dir / "square.svg").find("<svg") != std::string::npos);
+  REQUIRE(billiard("plot shapes/square.yaml -o " + (dir / "square.pdf").string()).status == 0);
+  CHECK(read_file(dir / "square.pdf").substr(0, 5) == "%PDF-");
+  const auto jpg = billiard("plot shapes/square.yaml -o " + (dir / "square.jpg").string());
+  CHECK(jpg.status == 2);
+  CHECK_THAT(jpg.output, Catch::Contains("must be .png, .pdf or .svg"));
+  CHECK(files_in(dir) == 2);  // no JPEG, no temporary file
+}
+
 TEST_CASE("plot draws 3-D shapes: polyhedra with balls, meshes; bad files write nothing") {
   const auto dir = scratch("plot3");
   for (const char* shape : {"sinai3", "l-prism", "ball"}) {

@@ -147,9 +147,9 @@ TEST_CASE("compare on the 3-D Sinai billiard at 320 pi: the Fokker-Planck law in
   CHECK(late["ks_p_value"].get<double>() > 1e-3);
   CHECK(late["l1_distance"].get<double>() < 1.5 * late["l1_expected_from_noise"].get<double>());
   CHECK(std::abs(late["mean_dE_fp_deviation_se"].get<double>()) < 3);
-  // The variance: within 8% of the exact FP one.  (An open finding, README "3-D shapes": the
-  // 3-D Sinai billiard's Var ΔE is 3–5% above it, 2.6–5 SE with 20 000 particles, at
-  // 320π, 1280π and 2560π alike, while the mean and the KS and L1 distances agree.)
+  // The variance: within 8% of the exact FP one.  The 3-D Sinai billiard's Var ΔE is 3–5% above
+  // it, 2.6–5 SE with 20 000 particles, at 320π, 1280π and 2560π alike, while the mean and the KS
+  // and L1 distances agree: the echo between parallel faces (docs/3d.md).
   CHECK(std::abs(late["var_dE"].get<double>() / late["fp_var_dE"].get<double>() - 1) < 0.08);
   // t = 0.5, one collision for most particles: not yet the diffusion law (the spike at E0).
   const auto& early = c["times"][0];

@@ -145,7 +145,7 @@ TEST_CASE("3-D: the windows searched in time order find the hit the wall-by-wall
 
 // With 8000 particles the standard errors are 23% (mean) and 1.6% (variance).  With 2·10⁵ the
 // variance is 2.7% (8 SE) above the Fokker–Planck one at any ω: the echo between parallel
-// faces (next test; README, "3-D shapes"), +3.1% at this F.
+// faces (next test; docs/3d.md), +3.1% at this F.
 TEST_CASE("3-D Sinai at omega = 320 pi: <dE> and Var(dE) match g1 dt and g2 dt (d = 3)") {
   const auto shape = sinai3();
   const dynamics3::Table3 table(shape.region);

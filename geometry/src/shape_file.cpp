@@ -1,4 +1,4 @@
-// Shape files: YAML → Region2.  See README.md ("Shape files") for the format.
+// Shape files: YAML → Region2.  See docs/shapes.md for the format.
 #include "billiards/geometry/shape_file.hpp"
 
 #include "billiards/geometry/measures.hpp"

@@ -1,4 +1,4 @@
-// 3-D shape files: YAML → Region3.  See README.md ("3-D shapes") for the format.
+// 3-D shape files: YAML → Region3.  See docs/3d.md for the format.
 #include "billiards/geometry3/shape3_file.hpp"
 
 #include "billiards/geometry/yaml_reader.hpp"

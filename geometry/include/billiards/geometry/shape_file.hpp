@@ -1,4 +1,4 @@
-// Reading 2-D shape files (YAML).  The format is documented in README.md ("Shape files").
+// Reading 2-D shape files (YAML).  The format is documented in docs/shapes.md.
 #pragma once
 
 #include "billiards/geometry/expression.hpp"

@@ -1,5 +1,5 @@
-// The exact geometry of a 2-D shape as JSON; its keys are listed in README.md ("billiard info
-// --json keys").
+// The exact geometry of a 2-D shape as JSON; its keys are listed in docs/commands.md
+// (`billiard info`).
 #pragma once
 
 #include "billiards/geometry/measures.hpp"

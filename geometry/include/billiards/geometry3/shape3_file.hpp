@@ -1,5 +1,4 @@
-// Reading 3-D shape files (YAML with `dimension: 3`).  The format is documented in README.md
-// ("3-D shapes").
+// Reading 3-D shape files (YAML with `dimension: 3`).  The format is documented in docs/3d.md.
 #pragma once
 
 #include "billiards/geometry/expression.hpp"

@@ -1,5 +1,5 @@
-// The exact geometry of a 3-D shape as JSON; its keys are listed in README.md ("3-D shapes",
-// `billiard info`).
+// The exact geometry of a 3-D shape as JSON; its keys are listed in docs/commands.md
+// (`billiard info`).
 #pragma once
 
 #include "billiards/geometry3/shape3_file.hpp"
