@@ -15,6 +15,8 @@ try:
 except ImportError:
     sys.exit("plot_shape.py: matplotlib is missing (Debian: apt install python3-matplotlib)")
 matplotlib.use("Agg")
+# Long trajectories are one path of 10^5-10^6 points: Agg draws it in chunks or overflows.
+matplotlib.rcParams["agg.path.chunksize"] = 10000
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import PathPatch  # noqa: E402
 from matplotlib.path import Path  # noqa: E402
@@ -75,7 +77,7 @@ def main():
     ax.set_title(data["title"], fontsize=10)
     try:
         # Cropped to the drawing: the figure size only sets the scale.
-        fig.savefig(sys.argv[2], dpi=150, format="png", bbox_inches="tight", pad_inches=0.1)
+        fig.savefig(sys.argv[2], dpi=150, bbox_inches="tight", pad_inches=0.1)  # format from the extension
     except OSError as e:
         sys.exit(f"plot_shape.py: cannot write {sys.argv[2]}: {e.strerror}")
 

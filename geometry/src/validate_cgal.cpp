@@ -237,9 +237,12 @@ void check_vertices(const Region2& r, const Arrangement& arr, const std::vector<
 
 // ---------------------------------------------------------------- (4) orientation, (3) nesting
 
+constexpr const char* outer_runs_clockwise =
+    "the outer boundary runs clockwise: list its pieces counter-clockwise (region on the left)";
+
 void check_orientation(const Region2& r) {
   if (!(signed_area(r.outer) > 0))
-    fail(r.outer.origin, "the outer boundary runs clockwise: list its pieces counter-clockwise (region on the left)");
+    fail(r.outer.origin, outer_runs_clockwise);
   for (const Loop& hole : r.holes)
     if (!(signed_area(hole) < 0))
       fail(hole.origin, "the hole runs counter-clockwise: list its pieces clockwise (region on the left)");
@@ -288,8 +291,15 @@ void validate(const Region2& region) {
   check_arc_ends(region, tol);
   std::vector<PieceId> ids;
   const Arrangement arr = arrangement_of(region, ids);
-  check_no_overlap(region, arr, ids);
-  check_vertices(region, arr, ids, tol);
+  try {
+    check_no_overlap(region, arr, ids);
+    check_vertices(region, arr, ids, tol);
+  } catch (const InputError& e) {
+    // Pieces listed clockwise make arcs bulge the wrong way and cross: say so (a figure-eight,
+    // of zero area, is only crossed).
+    if (signed_area(region.outer) < 0) throw InputError(e.file(), e.line(), e.message() + "; " + outer_runs_clockwise);
+    throw;
+  }
   check_orientation(region);
   check_nesting(region, arr, ids);
 }

@@ -3,6 +3,7 @@
 // of geometry3 that sees CGAL (it needs -frounding-math and compiles slowly).
 #include "billiards/geometry3/region3.hpp"
 
+#include "billiards/geometry/expression.hpp"
 #include "billiards/geometry/input_error.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -20,6 +21,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -121,12 +123,22 @@ TriangleMesh read_mesh(const std::string& path, const SourceRef& where) {
   if (!CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false)) ||
       polygons.empty())
     return fail("cannot read it as " + ext.substr(1) + " (or it has no faces)");
-  for (const auto& p : polygons)
-    if (p.size() < 3) return fail("a face has fewer than 3 vertices");
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    if (polygons[f].size() < 3) return fail("a face has fewer than 3 vertices");
+    for (const std::size_t v : polygons[f])
+      if (v >= points.size())
+        return fail("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) + " (counting from 0), but there are " +
+                    std::to_string(points.size()) + " vertices");
+  }
+  for (const Point& p : points)
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(p[k]) <= Expressions::max_magnitude))
+        return fail("a vertex coordinate is not a number within ±1e30");
   if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return fail(why_not_manifold(polygons));
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-  if (!CGAL::is_triangle_mesh(mesh)) PMP::triangulate_faces(mesh);
+  if (!CGAL::is_triangle_mesh(mesh) && (!PMP::triangulate_faces(mesh) || !CGAL::is_triangle_mesh(mesh)))
+    return fail("a face with more than 3 vertices cannot be triangulated: it is not planar, or it crosses itself");
   if (!CGAL::is_closed(mesh)) return fail("not closed (it has boundary edges): it does not bound a region");
   for (auto f : mesh.faces())
     if (PMP::is_degenerate_triangle_face(f, mesh))
