@@ -202,6 +202,10 @@ TEST_CASE("fuzzing findings: each crash found is a regression test") {
   check_refused(billiard("info " + (dir / "mesh.yaml").string()),
                 "mesh.yaml:3: mesh " + (dir / "tetrahedron.obj").string() + ": face 1 refers to vertex 3 (counting from 0), but there are 3 vertices",
                 dir / "out");
+  // fuzz_expression: a parameter name muparser refuses (too long) escaped as its own exception.
+  const std::string name = "log" + std::string(99, 'i') + "RR";
+  write_file(dir / "name.yaml", "parameters:\n  " + name + ": 1\nboundary:\n  circle: {center: [0, 0], radius: 1}\n");
+  check_refused(billiard("info " + (dir / "name.yaml").string()), "name.yaml:2: '" + name + "' cannot be a parameter name", dir / "out");
   // fuzz_mesh: the L-prism of shapes/3d with one vertex moved, (0, 2, 0) to (6, 2, 0): its
   // hexagonal face crosses itself and could not be triangulated, which failed a CGAL precondition.
   std::string prism = read_file(BILLIARDS_SOURCE_DIR "/shapes/3d/l-prism.off");

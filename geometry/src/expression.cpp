@@ -44,7 +44,11 @@ void Expressions::define(const std::string& name, const std::string& text, const
   const auto o = overrides.find(name);
   const double value = o != overrides.end() ? evaluate(o->second, "--set " + name, 0)
                                             : evaluate(text, file, line);
-  parser_->parser.DefineConst(name, value);
+  try {
+    parser_->parser.DefineConst(name, value);
+  } catch (const mu::ParserError& e) {
+    throw InputError(file, line, "'" + name + "' cannot be a parameter name: " + e.GetMsg());
+  }
   values_[name] = value;
 }
 
