@@ -163,6 +163,7 @@ void compare(const CompareArgs& args) {
                      "microcanonical initial energy");
   // Before the run, so that its errors come first.
   const auto fp = prediction_at_record_times(scene, *prediction, args.cells);
+  if (ranks().root()) OutputDir::require_creatable(scene.output_dir);
   const auto run = run_ensemble(scene, args);
   if (!run || !ranks().root()) return;
   std::vector<Fit> fits;

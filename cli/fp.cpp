@@ -3,6 +3,7 @@
 // a potential, numerically only.
 #include "commands.hpp"
 #include "options.hpp"
+#include "output.hpp"
 
 #include "billiards/analysis.hpp"
 #include "billiards/dynamics/scene.hpp"
@@ -13,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 namespace billiards::cli {
 
@@ -56,9 +56,7 @@ void fp(FpArgs& args) {
     }
     csv += "\n";
   }
-  const std::string tmp = args.output + ".tmp";
-  std::ofstream(tmp) << csv;
-  std::filesystem::rename(tmp, args.output);
+  write_file_atomically(args.output, csv);
   if (c->closed_form)
     fmt::print("wrote {}: eta(E, t) at t = {} (C = {:.6g})\n", args.output, fmt::join(args.times, ", "), c->C);
   else
@@ -82,7 +80,7 @@ void add_fp(CLI::App& app) {
   auto* cmd = app.add_subcommand("fp", "Fokker-Planck prediction of the energy distribution (numerical, and analytic for U = 0)");
   auto args = std::make_shared<FpArgs>();
   cmd->add_option("scene", args->scene, "scene file (YAML)")->required();
-  cmd->add_option("--times", args->times, "times t1,t2,... at which to write eta(E, t)")->delimiter(',')->required();
+  cmd->add_option("--times", args->times, "times t1,t2,... at which to write eta(E, t)")->delimiter(',')->required()->transform(expression_value);
   cmd->add_option("-o,--output", args->output, "CSV file to write")->required();
   cmd->add_option("--cells", args->cells, "energy cells (default 4000)")->check(CLI::Range(10, 10000000));
   cmd->add_option("--omega", args->overrides.omega, "drive frequency (an expression: 320*pi)")->transform(expression_value);

@@ -1,5 +1,11 @@
 // billiard: the command-line program.  Each subcommand lives in its own file.
+//
+// Every failure ends here with one line `billiard: error: ...` on stderr and a documented exit
+// status (docs/commands.md): 2 bad input (a file, an option, the command line), 1 a failure to
+// complete (cannot write, out of memory), 3 particles escaped, 128 + signal when interrupted
+// (interrupt.hpp).
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "ranks.hpp"
 
 #include "billiards/geometry/input_error.hpp"
@@ -9,11 +15,34 @@
 #include <fmt/core.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <new>
 
 namespace billiards::cli {
 namespace {
 std::string the_command_line;
+
+/// The commands as a list for messages: "info, run, ...".
+std::string command_names(const CLI::App& app) {
+  std::string names;
+  for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  return names;
 }
+
+/// The first word, when it is not an option, must name a command (CLI11 would call it "an
+/// extra argument" or say that a subcommand is required).
+void require_known_command(const CLI::App& app, int argc, char** argv) {
+  const std::string hint = "; the commands are " + command_names(app) + " ('billiard --help' describes them)";
+  if (argc < 2) throw InputError("", 0, "no command given" + hint);
+  const std::string first = argv[1];
+  if (first.empty() || first[0] == '-') return;
+  for (const auto* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    if (sub->check_name(first)) return;
+  throw InputError("", 0, "unknown command '" + first + "'" + hint);
+}
+}  // namespace
+
 void set_command_line(int argc, char** argv) {
   for (int i = 0; i < argc; ++i) the_command_line += (i ? " " : "") + std::string(argv[i]);
 }
@@ -21,6 +50,7 @@ const std::string& command_line() { return the_command_line; }
 }  // namespace billiards::cli
 
 int main(int argc, char** argv) {
+  billiards::cli::watch_interrupts();
   CLI::App app{"billiard: exact geometry, dynamics and energy diffusion of billiards"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("billiard ") + billiards::version);
@@ -33,19 +63,32 @@ int main(int argc, char** argv) {
   billiards::cli::add_compare(app);
   billiards::cli::add_bench(app);
   bool speaks = true;  // in an MPI job only the first rank prints; all compute
+  const auto error = [&](const std::string& message, int status) {
+    if (speaks) fmt::print(stderr, "billiard: error: {}\n", message);
+    return status;
+  };
   try {
     const billiards::cli::Ranks ranks(argc, argv);
     speaks = ranks.root();
     if (!speaks && !std::freopen("/dev/null", "w", stdout)) return 1;
+    billiards::cli::require_known_command(app, argc, argv);
     app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help
+    return speaks ? app.exit(e) : 0;
+  } catch (const CLI::RuntimeError& e) {  // a command's own status, its message printed
+    return e.get_exit_code();
   } catch (const CLI::Error& e) {
-    return speaks ? app.exit(e) : e.get_exit_code();
+    std::string help = "billiard --help";
+    for (const auto* sub : app.get_subcommands()) help = "billiard " + sub->get_name() + " --help";
+    return error(fmt::format("{} (see '{}')", e.what(), help), 2);
   } catch (const billiards::InputError& e) {
-    if (speaks) fmt::print(stderr, "billiard: error: {}\n", e.what());
-    return 2;
+    return error(e.what(), 2);
+  } catch (const std::bad_alloc&) {
+    return error("out of memory", 1);
+  } catch (const std::filesystem::filesystem_error& e) {
+    return error(fmt::format("{}: {}", e.path1().string(), e.code().message()), 1);
   } catch (const std::exception& e) {
-    if (speaks) fmt::print(stderr, "billiard: error: {}\n", e.what());
-    return 1;
+    return error(e.what(), 1);
   }
   return 0;
 }

@@ -5,11 +5,13 @@
 #include "billiards/dynamics/scene.hpp"
 #include "billiards/geometry/expression.hpp"
 #include "billiards/geometry/shape_file.hpp"
+#include "billiards/geometry/yaml_reader.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +34,33 @@ inline const CLI::Validator expression_value(
       }
     },
     "EXPR");
+
+/// A whole number in [lo, hi], written as an expression ("1e6", "2^20"); a value outside is
+/// refused, never wrapped or rounded.
+inline CLI::Validator whole_number(double lo, double hi) {
+  return CLI::Validator(
+      [lo, hi](std::string& text) {
+        const std::string range = fmt::format("a whole number from {} to {}", format_count(lo), format_count(hi));
+        try {
+          const double v = Expressions().evaluate(text, "", 0);
+          if (!(v >= lo && v <= hi) || v != std::floor(v)) return fmt::format("must be {}, not {}", range, text);
+          text = fmt::format("{:.0f}", v);
+          return std::string();
+        } catch (const InputError& e) {
+          return fmt::format("must be {}: {}", range, e.what());
+        }
+      },
+      "INT");
+}
+
+/// A 64-bit seed: digits only (a negative number would wrap).
+inline const CLI::Validator seed_value(
+    [](std::string& text) {
+      const bool digits = !text.empty() && text.size() <= 20 && text.find_first_not_of("0123456789") == std::string::npos;
+      if (digits && (text.size() < 20 || text <= "18446744073709551615")) return std::string();
+      return "must be a whole number from 0 to 18446744073709551615, not " + text;
+    },
+    "UINT64");
 
 inline Overrides parse_overrides(const std::vector<std::string>& assignments) {
   Overrides out;

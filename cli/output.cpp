@@ -1,5 +1,7 @@
 #include "output.hpp"
 
+#include "billiards/geometry/input_error.hpp"
+
 #include <fmt/core.h>
 
 #include <fstream>
@@ -11,11 +13,37 @@ namespace billiards::cli {
 
 namespace fs = std::filesystem;
 
-OutputDir::OutputDir(fs::path final_dir) : final_(std::move(final_dir)) {
-  tmp_ = final_;
-  tmp_ += fmt::format(".tmp-{}", getpid());
-  fs::remove_all(tmp_);
-  fs::create_directories(tmp_);
+namespace {
+fs::path temporary_beside(const fs::path& final) {
+  fs::path tmp = final;
+  tmp += fmt::format(".tmp-{}", getpid());
+  return tmp;
+}
+}  // namespace
+
+void write_file_atomically(const fs::path& path, const std::string& text) {
+  fs::path tmp = path;
+  tmp += fmt::format(".tmp-{}", getpid());
+  Unfinished unfinished(tmp);
+  std::ofstream out(tmp);
+  out << text;
+  out.close();
+  if (!out) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw InputError(path.string(), 0, "cannot write the file");
+  }
+  unfinished.commit(path);
+}
+
+OutputDir::OutputDir(fs::path final_dir)
+    : final_(std::move(final_dir)), tmp_(temporary_beside(final_)), unfinished_(tmp_) {
+  try {
+    fs::remove_all(tmp_);
+    fs::create_directories(tmp_);
+  } catch (const fs::filesystem_error& e) {
+    throw InputError(final_.string(), 0, "cannot create the output directory: " + e.code().message());
+  }
 }
 
 OutputDir::~OutputDir() {
@@ -57,9 +85,12 @@ void OutputDir::write_npy(const std::string& name, const std::vector<double>& da
 }
 
 void OutputDir::commit() {
-  if (!final_.parent_path().empty()) fs::create_directories(final_.parent_path());
-  fs::remove_all(final_);
-  fs::rename(tmp_, final_);
+  try {
+    fs::remove_all(final_);
+    unfinished_.commit(final_);
+  } catch (const fs::filesystem_error& e) {
+    throw std::runtime_error(fmt::format("cannot move the results into {}: {}", final_.string(), e.code().message()));
+  }
   committed_ = true;
 }
 

@@ -1,6 +1,9 @@
 // Writing results: every file of a run goes into a temporary directory that is renamed into
-// place only when complete, so a failed or interrupted run leaves no half-written output.
+// place only when complete, so a failed or interrupted run leaves no half-written output
+// (interrupt.hpp removes the temporary on Ctrl-C).
 #pragma once
+
+#include "interrupt.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -12,10 +15,17 @@
 
 namespace billiards::cli {
 
+/// Writes `text` to `path` through a temporary beside it, renamed into place when complete (and
+/// removed if the program fails or is interrupted first).
+void write_file_atomically(const std::filesystem::path& path, const std::string& text);
+
 class OutputDir {
  public:
+  /// Creates the temporary directory; an InputError names `final_dir` if that is impossible.
   explicit OutputDir(std::filesystem::path final_dir);
   ~OutputDir();  // removes the temporary directory unless committed
+  /// Fails as the constructor would, leaving nothing: for checking before a long run.
+  static void require_creatable(const std::filesystem::path& final_dir) { OutputDir probe(final_dir); }
   OutputDir(const OutputDir&) = delete;
   OutputDir& operator=(const OutputDir&) = delete;
 
@@ -32,6 +42,7 @@ class OutputDir {
 
  private:
   std::filesystem::path final_, tmp_;
+  Unfinished unfinished_;
   bool committed_ = false;
 };
 

@@ -2,6 +2,7 @@
 // The geometry and the trajectory are computed here, so the picture shows exactly the walls
 // the dynamics uses; matplotlib (scripts/plot_shape.py) only draws the points it is given.
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "options.hpp"
 #include "python.hpp"
 
@@ -29,6 +30,9 @@ namespace fs = std::filesystem;
 /// Arcs get a vertex every half degree: smooth at any figure size, and a polygon with
 /// thousands of edges is still drawn edge for edge.
 constexpr double arc_step = geometry::pi / 360;
+
+/// A longer trajectory would only paint the region solid (and its JSON takes ~50 bytes a point).
+constexpr double max_collisions = 1e6;
 
 /// The loop's outline (geometry::outline_of) as a JSON list of points.
 nlohmann::json loop_points(const geometry::Loop& loop) {
@@ -103,37 +107,42 @@ nlohmann::json shape3_data(const std::string& path, const Overrides& set, int co
   return {{"dimension", 3}, {"title", title}, {"faces", faces}, {"spheres", spheres}, {"trajectory", trajectory}};
 }
 
-/// The picture's format is its extension's: png, pdf or svg (matplotlib writes all three).
-void check_format(const fs::path& output) {
-  const std::string ext = output.extension().string();
-  if (ext != ".png" && ext != ".pdf" && ext != ".svg")
-    throw InputError("-o", 0, fmt::format("'{}': the picture's extension must be .png, .pdf or .svg", output.string()));
-}
-
-/// Removes its file when it goes out of scope, so no exit path leaves temporaries behind.
+/// Removes its file when it goes out of scope (or the program is interrupted), so no exit path
+/// leaves temporaries behind.
 struct TempFile {
   fs::path path;
+  Unfinished unfinished{path};
   ~TempFile() {
     std::error_code ignored;
     fs::remove(path, ignored);
   }
 };
 
+/// The formats matplotlib writes without extra libraries; the output's extension picks one.
+void require_picture_format(const fs::path& output) {
+  const std::string ext = output.extension().string();
+  if (ext != ".png" && ext != ".pdf" && ext != ".svg")
+    throw InputError("-o " + output.string(), 0, "the picture's format follows its extension: .png, .pdf or .svg");
+}
+
 /// Draws `data` into `output`.  The script draws into a temporary file next to `output` that
 /// is renamed into place only on success, so `output` is either the complete picture or
 /// untouched.
 void draw(const nlohmann::json& data, const fs::path& output) {
-  check_format(output);
   const fs::path script = script_path(data.value("dimension", 2) == 3 ? "plot_shape3.py" : "plot_shape.py");
   const TempFile json{fs::temp_directory_path() / fmt::format("billiard-plot-{}.json", getpid())};
   std::ofstream out(json.path);
   out << data.dump();
   out.close();
   if (!out) throw std::runtime_error("cannot write " + json.path.string());
-  if (output.has_parent_path()) fs::create_directories(output.parent_path());
-  const TempFile picture{fs::path(output.string() + fmt::format(".tmp-{}{}", getpid(), output.extension().string()))};
+  try {
+    if (output.has_parent_path()) fs::create_directories(output.parent_path());
+  } catch (const fs::filesystem_error& e) {
+    throw InputError("-o " + output.string(), 0, "cannot create its directory: " + e.code().message());
+  }
+  TempFile picture{fs::path(output.string() + fmt::format(".tmp-{}", getpid()) + output.extension().string())};
   run_python(script, {json.path.string(), picture.path.string()});
-  fs::rename(picture.path, output);
+  picture.unfinished.commit(output);
 }
 
 }  // namespace
@@ -148,12 +157,13 @@ void add_plot(CLI::App& app) {
   };
   auto args = std::make_shared<Args>();
   cmd->add_option("shape", args->shape, "shape file (YAML)")->required();
-  cmd->add_option("-o,--output", args->output, "picture to write: FILE.png, FILE.pdf or FILE.svg")->required();
+  cmd->add_option("-o,--output", args->output, "picture to write (.png, .pdf or .svg)")->required();
   cmd->add_option("--trajectory", args->trajectory, "draw a free trajectory of K collisions")
-      ->check(CLI::Range(0, std::numeric_limits<int>::max()));
-  cmd->add_option("--seed", args->seed, "seed of the trajectory's initial condition");
+      ->transform(whole_number(0, max_collisions));
+  cmd->add_option("--seed", args->seed, "seed of the trajectory's initial condition")->check(seed_value);
   add_set_option(cmd, args->set);
   cmd->callback([args] {
+    require_picture_format(args->output);
     if (geometry3::shape_dimension(args->shape) == 3) {
       draw(shape3_data(args->shape, parse_overrides(args->set), args->trajectory, args->seed), args->output);
       fmt::print("wrote {}\n", args->output);

@@ -1,14 +1,19 @@
 #include "python.hpp"
 
+#include "interrupt.hpp"
+
 #include <fmt/core.h>
 
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 
+#include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 extern char** environ;
 
@@ -34,6 +39,17 @@ fs::path script_path(const std::string& name) {
   return script;
 }
 
+namespace {
+/// The last non-empty line of a Python error output: the exception and its message.
+std::string last_line(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+  return last;
+}
+}  // namespace
+
 void run_python(const fs::path& script, const std::vector<std::string>& args) {
   const char* env = std::getenv("BILLIARDS_PYTHON");
   std::vector<std::string> argv_s = {env ? env : "/usr/bin/python3", script.string()};
@@ -41,17 +57,33 @@ void run_python(const fs::path& script, const std::vector<std::string>& args) {
   std::vector<char*> argv;
   for (auto& a : argv_s) argv.push_back(a.data());
   argv.push_back(nullptr);
+  // The script's stderr goes to a file: a failure is reported as one line, not a traceback.
+  const fs::path errors = fs::temp_directory_path() / fmt::format("billiard-python-{}.err", getpid());
+  const Unfinished unfinished(errors);
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, STDERR_FILENO, errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  unblock_interrupts_in_child(attr);
   pid_t pid = 0;
-  if (const int err = posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ))
+  const int err = posix_spawnp(&pid, argv[0], &files, &attr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&files);
+  posix_spawnattr_destroy(&attr);
+  if (err)
     throw std::runtime_error(fmt::format("cannot run {}: {} (set BILLIARDS_PYTHON to a python3 with matplotlib)",
                                          argv_s[0], std::strerror(err)));
   int status = 0;
   while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
+  const std::string message = last_line(errors);
+  std::error_code ignored;
+  fs::remove(errors, ignored);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
   const std::string how = WIFEXITED(status) ? fmt::format("exit status {}", WEXITSTATUS(status))
                                             : fmt::format("signal {}", WTERMSIG(status));
-  throw std::runtime_error(fmt::format("drawing failed: {} {} ended with {}", argv_s[0], script.string(), how));
+  throw std::runtime_error(fmt::format("drawing failed: {} ended with {}{}{}", script.filename().string(), how,
+                                       message.empty() ? "" : ": ", message));
 }
 
 }  // namespace billiards::cli

@@ -2,6 +2,7 @@
 #include "run.hpp"
 
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "progress.hpp"
 #include "ranks.hpp"
 
@@ -18,6 +19,9 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+
+#include <sys/resource.h>
+#include <unistd.h>
 
 namespace billiards::cli {
 
@@ -36,15 +40,12 @@ struct Interrupted {};
 class Checkpoint {
  public:
   Checkpoint(const fs::path& out, std::string fingerprint)
-      : dir_(fs::path(out.string() + ".partial")), fingerprint_(std::move(fingerprint)) {
+      : dir_(fs::path(out.string() + ".partial")), fingerprint_(std::move(fingerprint)),
+        note_(fmt::format("the same command resumes from {}/", dir_.string())) {
     if (ranks().root()) {
       std::ifstream in(dir_ / "fingerprint.json");
       std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      if (old != fingerprint_) {  // another scene or other parameters: start afresh
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-        std::ofstream(dir_ / "fingerprint.json") << fingerprint_;
-      }
+      if (old != fingerprint_) start_afresh();  // another scene or other parameters
     }
     ranks().barrier();  // the other ranks find the directory ready
   }
@@ -73,9 +74,43 @@ class Checkpoint {
   fs::path chunk(std::size_t first, std::size_t last) const {
     return dir_ / fmt::format("chunk-{}-{}.bin", first, last);
   }
+  void start_afresh() const {
+    try {
+      fs::remove_all(dir_);
+      fs::create_directories(dir_);
+    } catch (const fs::filesystem_error& e) {
+      throw InputError(dir_.string(), 0, "cannot create the checkpoint directory: " + e.code().message());
+    }
+    // The fingerprint is written last: a directory without it is started afresh next time.
+    const fs::path tmp = dir_ / "fingerprint.json.tmp";
+    std::ofstream(tmp) << fingerprint_;
+    fs::rename(tmp, dir_ / "fingerprint.json");
+  }
+
   fs::path dir_;
   std::string fingerprint_;
+  InterruptNote note_;
 };
+
+/// Refuses a run whose arrays (or threads' stacks) would not fit in memory, before allocating.
+void require_memory(const Scene& scene, int threads) {
+  const double n = double(scene.particles), m = double(scene.record_times.size());
+  const double per_particle = m * sizeof(double) + sizeof(dynamics::ParticleLog) + sizeof(dynamics3::State3);
+  const double table = 3000 * m * 24;  // fokker-planck.csv, built in memory
+  rlimit stack{}, space{};
+  getrlimit(RLIMIT_STACK, &stack);
+  getrlimit(RLIMIT_AS, &space);
+  const double stack_size = stack.rlim_cur == RLIM_INFINITY ? 8 << 20 : double(stack.rlim_cur);
+  const double need = n * per_particle + table + threads * stack_size;
+  double have = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGESIZE));
+  if (space.rlim_cur != RLIM_INFINITY) have = std::min(have, double(space.rlim_cur));
+  if (need > 0.8 * have)
+    throw InputError(scene.file, 0,
+                     fmt::format("{:.0f} particles x {:.0f} record times on {} threads need about {:.3g} GB of memory, "
+                                 "more than the {:.3g} GB available (physical memory or ulimit -v): use fewer "
+                                 "particles, record times or threads",
+                                 n, m, threads, need / 1e9, have / 1e9));
+}
 
 /// Mean and variance of ΔE with their standard errors.
 nlohmann::json delta_stats(const std::vector<double>& dE) {
@@ -217,19 +252,21 @@ void write_energies_csv(std::ostream& out, const Scene& scene, const EnsembleRes
 
 void add_run_options(CLI::App* cmd, RunArgs& args) {
   cmd->add_option("scene", args.scene, "scene file (YAML)")->required();
-  cmd->add_option("--particles", args.overrides.particles, "number of particles");
-  cmd->add_option("--time", args.overrides.time, "end time of the run");
+  cmd->add_option("--particles", args.overrides.particles, "number of particles")->transform(whole_number(2, 1e12));
+  cmd->add_option("--time", args.overrides.time, "end time of the run")->transform(expression_value);
   cmd->add_option("--omega", args.overrides.omega, "drive frequency (an expression: 320*pi)")->transform(expression_value);
   cmd->add_option("--record", args.overrides.record, "record times t1,t2,... (0 and the end time are added)")
-      ->delimiter(',');
-  cmd->add_option("--seed", args.overrides.seed, "random seed");
+      ->delimiter(',')
+      ->transform(expression_value);
+  cmd->add_option("--seed", args.overrides.seed, "random seed")->check(seed_value);
   cmd->add_option("--out", args.overrides.output_dir, "output directory");
-  cmd->add_option("--threads", args.threads, "threads (default: all cores)");
+  cmd->add_option("--threads", args.threads, "threads (default: all cores)")->transform(whole_number(1, max_threads));
   cmd->add_flag("--verify", args.verify, "also test the midpoint of every flight against the region");
   cmd->add_flag("--quiet", args.quiet, "no progress bar");
   cmd->add_flag("!--no-csv", args.csv, "write energies.npy only (energies.csv is ~0.4 kB per particle)");
   cmd->add_option("--max-chunks", args.max_chunks,
-                  "run at most K new chunks of particles, then stop; the same command resumes");
+                  "run at most K new chunks of particles, then stop; the same command resumes")
+      ->transform(whole_number(1, 1e12));
   add_set_option(cmd, args.set);
 }
 
@@ -241,7 +278,8 @@ dynamics::Scene load_scene(const RunArgs& args) {
 
 std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_in) {
   RunArgs args = args_in;
-  if (args.threads <= 0) args.threads = omp_get_max_threads();
+  if (args.threads <= 0) args.threads = std::min(omp_get_max_threads(), max_threads);
+  require_memory(scene, args.threads);
   fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
              scene.shape_name(), scene.force.name(), scene.time);
   RunOutcome run{scene, analysis::prediction_of(scene), {}, {}};
@@ -298,7 +336,9 @@ void add_run(CLI::App& app) {
                   "or FROM..TO:+STEP (expressions), outputs in OUT/NAME=VALUE/ and OUT/sweep.csv");
   cmd->callback([args] {
     if (!args->sweep.empty()) return run_sweep(*args);
-    const auto run = run_ensemble(load_scene(*args), *args);
+    const auto scene = load_scene(*args);
+    if (ranks().root()) OutputDir::require_creatable(scene.output_dir);  // before the run, not after
+    const auto run = run_ensemble(scene, *args);
     if (!run || !ranks().root()) return;
     OutputDir out(run->scene.output_dir);
     write_run_files(out, *run, *args);

@@ -18,6 +18,9 @@
 
 namespace billiards::cli {
 
+/// More threads than this are a typo; each costs a stack (ulimit -s) of address space.
+constexpr int max_threads = 1024;
+
 struct RunArgs {
   std::string scene;
   dynamics::SceneOverrides overrides;

@@ -33,6 +33,7 @@ std::vector<double> sweep_values(const std::string& text) {
   const bool geometric = text[colon + 1] == 'x';
   if (geometric ? !(step > 1 && from > 0) : !(step > 0))
     throw InputError("--sweep", 0, "the range '" + text + "' does not advance from its start");
+  if (from > to) throw InputError("--sweep", 0, "the range '" + text + "' is empty: it starts above its end");
   std::vector<double> values;
   const double last = to * (1 + 1e-12) + 1e-300;  // the end, despite rounding of the steps
   for (int k = 0;; ++k) {
@@ -49,6 +50,8 @@ struct Sweep {
   std::vector<double> values;
 };
 
+std::string point_dir(const std::string& name, double value) { return fmt::format("{}={:.6g}", name, value); }
+
 Sweep parse_sweep(const std::string& text) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0) throw InputError("--sweep", 0, "expected NAME=VALUES, not '" + text + "'");
@@ -63,14 +66,23 @@ void run_sweep(const RunArgs& args) {
   std::string csv = fmt::format("{},particles,mean_dE,se_mean_dE,var_dE,se_var_dE,g1_dt,g2_dt,fp_mean_dE,fp_var_dE,"
                                 "collisions,escapes,wall_seconds,dir\n", sweep.name);
   nlohmann::json points = nlohmann::json::array();
+  // Every point's scene is read before the first runs: a value that makes a bad scene fails
+  // the sweep before it writes anything.
+  std::vector<RunArgs> points_args;
   for (const double value : sweep.values) {
-    RunArgs point = args;
+    RunArgs& point = points_args.emplace_back(args);
     if (sweep.name == "omega")
       point.overrides.omega = value;
     else
       point.set.push_back(fmt::format("{}={:.17g}", sweep.name, value));
-    const std::string dir = fmt::format("{}={:.6g}", sweep.name, value);
-    point.overrides.output_dir = base + "/" + dir;
+    point.overrides.output_dir = base + "/" + point_dir(sweep.name, value);
+    load_scene(point);
+  }
+  if (ranks().root()) OutputDir::require_creatable(base);
+  for (std::size_t k = 0; k < sweep.values.size(); ++k) {
+    const double value = sweep.values[k];
+    const RunArgs& point = points_args[k];
+    const std::string dir = point_dir(sweep.name, value);
     const auto run = run_ensemble(load_scene(point), point);
     if (!run) return;  // interrupted: the same command resumes this point
     if (!ranks().root()) continue;
@@ -90,11 +102,9 @@ void run_sweep(const RunArgs& args) {
   }
   if (!ranks().root()) return;
   // The table is rewritten whole, and only once every point is done.
-  const std::filesystem::path table = std::filesystem::path(base) / "sweep.csv";
-  std::ofstream(table.string() + ".tmp") << csv;
-  std::filesystem::rename(table.string() + ".tmp", table);
-  std::ofstream(base + "/sweep.json.tmp") << nlohmann::json{{"parameter", sweep.name}, {"points", points}}.dump(1);
-  std::filesystem::rename(base + "/sweep.json.tmp", base + "/sweep.json");
+  write_file_atomically(std::filesystem::path(base) / "sweep.csv", csv);
+  write_file_atomically(std::filesystem::path(base) / "sweep.json",
+                        nlohmann::json{{"parameter", sweep.name}, {"points", points}}.dump(1));
   fmt::print("sweep of {} over {} values: {}/sweep.csv\n", sweep.name, sweep.values.size(), base);
 }
 

@@ -68,4 +68,7 @@ def main(run):
 if __name__ == "__main__":
     if len(sys.argv) != 2:
         sys.exit(__doc__)
-    main(sys.argv[1])
+    try:
+        main(sys.argv[1])
+    except (OSError, ValueError, KeyError) as e:  # a missing or malformed run: one line, no traceback
+        sys.exit(f"plot_compare.py: error: {e}")

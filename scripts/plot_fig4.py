@@ -55,4 +55,7 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except (OSError, ValueError, KeyError) as e:  # a missing or malformed run: one line, no traceback
+        sys.exit(f"plot_fig4.py: error: {e}")

@@ -15,6 +15,8 @@ try:
 except ImportError:
     sys.exit("plot_shape.py: matplotlib is missing (Debian: apt install python3-matplotlib)")
 matplotlib.use("Agg")
+# Long trajectories are one path of 10^5-10^6 points: Agg draws it in chunks or overflows.
+matplotlib.rcParams["agg.path.chunksize"] = 10000
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import PathPatch  # noqa: E402
 from matplotlib.path import Path  # noqa: E402

@@ -54,7 +54,7 @@ TEST_CASE("plot writes the format its -o extension names, and refuses other exte
   CHECK(read_file(dir / "square.pdf").substr(0, 5) == "%PDF-");
   const auto jpg = billiard("plot shapes/square.yaml -o " + (dir / "square.jpg").string());
   CHECK(jpg.status == 2);
-  CHECK_THAT(jpg.output, Catch::Contains("must be .png, .pdf or .svg"));
+  CHECK_THAT(jpg.output, Catch::Contains("format follows its extension: .png, .pdf or .svg"));
   CHECK(files_in(dir) == 2);  // no JPEG, no temporary file
 }
 

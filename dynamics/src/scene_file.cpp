@@ -2,6 +2,7 @@
 
 #include "billiards/dynamics/table.hpp"
 #include "billiards/dynamics3/table3.hpp"
+#include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/yaml_reader.hpp"
 
 #include <fmt/core.h>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace billiards::dynamics {
@@ -30,6 +32,9 @@ namespace {
 namespace fs = std::filesystem;
 
 using SceneReader = YamlReader;
+
+/// Seeds in a file are numbers, exact up to 2^53 (--seed takes any 64-bit value).
+constexpr double max_seed = 9007199254740992.0;
 
 /// A function of x, y from a scalar node.
 CoordinateFunction coordinate_function(const SceneReader& r, const Expressions& expr, const YAML::Node& n) {
@@ -108,26 +113,32 @@ Potential read_potential(const SceneReader& r, const Expressions& expr, const YA
   return p;
 }
 
-/// Record times: a list, {every: dt} or {count: n} (evenly from 0 to the end time).  The end
-/// time is always recorded.
+/// More record times than this are a typo (and their table would not fit in memory).
+constexpr std::size_t max_record_times = 10000;
+
+/// Record times: a list, {every: dt} or {count: n} (evenly from 0 to the end time).  The start
+/// and the end time are always recorded.
 std::vector<double> read_record(const SceneReader& r, const YAML::Node& n, double time) {
-  std::vector<double> t;
+  std::vector<double> t = {0.0};
   if (!n) {
-    t = {0.0};
   } else if (n.IsSequence()) {
     for (const auto& x : n) {
       const double v = r.number(x);
-      if (v < 0 || (!t.empty() && v <= t.back())) r.fail(x, "record times must be ≥ 0 and increasing");
-      if (v < time) t.push_back(v);
+      if (v < 0 || (v <= t.back() && !(v == 0 && t.size() == 1))) r.fail(x, "record times must be ≥ 0 and increasing");
+      if (v > 0 && v < time) t.push_back(v);
     }
   } else {
     r.expect_keys(n, {"every", "count"}, "'record'");
     if (n["every"]) {
       const double dt = r.positive(n["every"], "record.every");
-      for (double k = 0; k * dt < time * (1 - 1e-12); ++k) t.push_back(k * dt);
+      if (time / dt > max_record_times)
+        r.fail(n["every"], fmt::format("record.every gives {:.3g} record times; at most {} are allowed", time / dt,
+                                       max_record_times));
+      for (double k = 1; k * dt < time * (1 - 1e-12); ++k) t.push_back(k * dt);
     } else {
       const std::size_t m = r.count(n["count"], "record.count");
-      for (std::size_t k = 0; k + 1 < m; ++k) t.push_back(time * double(k) / double(m - 1));
+      if (m > max_record_times) r.fail(n["count"], fmt::format("record.count is at most {}", max_record_times));
+      for (std::size_t k = 1; k + 1 < m; ++k) t.push_back(time * double(k) / double(m - 1));
     }
   }
   t.push_back(time);
@@ -156,12 +167,41 @@ std::vector<S> read_initial_csv(const std::string& path, Inside inside) {
     if (!read || (fields >> extra))
       throw InputError(path, number, d == 2 ? "expected four numbers: x, y, vx, vy"
                                             : "expected six numbers: x, y, z, vx, vy, vz");
+    if (!(s.x.cwiseAbs().maxCoeff() <= Expressions::max_magnitude && s.v.cwiseAbs().maxCoeff() <= Expressions::max_magnitude))
+      throw InputError(path, number, fmt::format("a number is out of range: numbers lie within ±{:g}", Expressions::max_magnitude));
     if (!inside(s.x)) throw InputError(path, number, "particle is outside the region");
     if (!(s.v.squaredNorm() > 0)) throw InputError(path, number, "particle has zero velocity");
     states.push_back(s);
   }
-  if (states.empty()) throw InputError(path, 0, "no particles in initial-condition file");
+  if (states.size() < 2) throw InputError(path, 0, "fewer than two particles in the initial-condition file (the statistics need two)");
   return states;
+}
+
+/// The drive in the range where runs are resolved: its phase ω t to 1e-6 rad at the end time
+/// (ω T ≤ 4.5e9 in doubles), and a periodic force's displacement amplitude |F|/(m ω²) at most
+/// 1000 mean free paths (beyond, the drive is no perturbation and flights are not resolved).
+void check_drive(const Scene& scene, const SceneReader& r, const YAML::Node& force, const YAML::Node& time,
+                 const SceneOverrides& ov) {
+  if (scene.force.kind != Force::Kind::periodic && scene.force.kind != Force::Kind::field) return;
+  const auto refuse = [&](bool from_command_line, const YAML::Node& n, const std::string& option,
+                          const std::string& why) {
+    if (from_command_line) throw InputError(option, 0, why);
+    r.fail(n, why);
+  };
+  const double omega = scene.force.omega, phase_limit = 1e-6 / std::numeric_limits<double>::epsilon();
+  if (omega * scene.time > phase_limit)
+    refuse(ov.time.has_value(), time, "--time",
+           fmt::format("the run time {:g} is too long for omega = {:g}: the drive's phase omega*t must stay below "
+                       "{:.2g} to be resolved to 1e-6 rad",
+                       scene.time, omega, phase_limit));
+  if (scene.force.kind != Force::Kind::periodic) return;
+  const double lambda = geometry::mean_free_path(scene.measures());
+  const double displacement = scene.force.amplitude.norm() / (scene.mass * omega * omega);
+  if (displacement > 1000 * lambda)
+    refuse(ov.omega.has_value(), force, "--omega",
+           fmt::format("omega = {:g} is too small for this force: the drive's displacement amplitude |F|/(m omega^2) "
+                       "= {:.3g} exceeds 1000 mean free paths ({:.3g})",
+                       omega, displacement, 1000 * lambda));
 }
 
 }  // namespace
@@ -183,12 +223,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   Scene scene;
   scene.file = path;
   scene.text = text;
-  YAML::Node doc;
-  try {
-    doc = YAML::Load(scene.text);
-  } catch (const YAML::Exception& e) {
-    throw InputError(path, e.mark.line + 1, "not valid YAML: " + e.msg);
-  }
+  const YAML::Node doc = load_yaml(scene.text, path);
   Expressions expr;
   const SceneReader r(path, expr);
   if (!doc.IsMap()) throw InputError(path, 1, "a scene file is a YAML mapping");
@@ -200,13 +235,12 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   Overrides shape_set;
   if (const YAML::Node s = doc["set"]) {
     if (!s.IsMap()) r.fail(s, "'set' must be a mapping NAME: value of shape parameters");
-    for (const auto& kv : s) shape_set[kv.first.as<std::string>()] = kv.second.Scalar();
+    for (const auto& kv : s) {
+      if (!kv.second.IsScalar()) r.fail(kv.second, "a shape parameter's value must be a number or expression");
+      shape_set[kv.first.Scalar()] = kv.second.Scalar();
+    }
   }
-  if (const YAML::Node params = doc["parameters"]) {
-    if (!params.IsMap()) r.fail(params, "'parameters' must be a mapping NAME: value");
-    for (const auto& kv : params)
-      expr.define(kv.first.as<std::string>(), kv.second.Scalar(), path, r.line(kv.first), ov.set);
-  }
+  if (const YAML::Node params = doc["parameters"]) r.define_parameters(params, ov.set);
   for (const auto& [name, value] : ov.set)
     if (!expr.values().count(name)) shape_set[name] = value;
 
@@ -242,6 +276,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   r.expect_keys(run, {"particles", "time", "record", "seed"}, "'run'");
   scene.time = ov.time ? *ov.time : r.positive(r.required(run, "time", "'run'"), "run.time");
   if (!(scene.time > 0)) throw InputError("--time", 0, "the run time must be positive");
+  check_drive(scene, r, doc["force"], run["time"], ov);
   scene.record_times = read_record(r, run["record"], scene.time);
   if (ov.record) {
     scene.record_times = {0.0};
@@ -251,11 +286,12 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
     }
     scene.record_times.push_back(scene.time);
   }
-  scene.seed = ov.seed ? *ov.seed : run["seed"] ? std::uint64_t(r.number(run["seed"])) : 1;
+  scene.seed = ov.seed ? *ov.seed : run["seed"] ? r.whole(run["seed"], "run.seed", 0, max_seed) : 1;
 
   const YAML::Node init = r.required(doc, "initial", "a scene file");
   r.expect_keys(init, {"microcanonical", "csv"}, "'initial'");
   if (const YAML::Node csv = init["csv"]) {
+    if (!csv.IsScalar()) r.fail(csv, "'csv' is the path of an initial-condition file");
     scene.initial_csv = (fs::path(base_dir) / csv.Scalar()).lexically_normal().string();
     if (scene.dimension == 3) {
       const dynamics3::Table3 table(scene.shape3.region);
@@ -271,14 +307,16 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
     const YAML::Node mc = r.required(init, "microcanonical", "'initial'");
     r.expect_keys(mc, {"energy"}, "'microcanonical'");
     scene.energy = r.positive(r.required(mc, "energy", "'microcanonical'"), "energy");
-    scene.particles = r.count(r.required(run, "particles", "'run'"), "run.particles");
+    scene.particles = r.whole(r.required(run, "particles", "'run'"), "run.particles", 2, 1e12);
   }
   if (ov.particles) {
     if (!scene.initial_csv.empty() && *ov.particles > scene.particles)
       throw InputError("--particles", 0, "more particles than the initial-condition file holds");
-    if (*ov.particles == 0) throw InputError("--particles", 0, "need at least one particle");
+    if (*ov.particles < 2) throw InputError("--particles", 0, "the statistics need at least two particles");
     scene.particles = *ov.particles;
   }
+  if (const YAML::Node out = doc["output"]; out && (!out.IsScalar() || out.Scalar().empty()))
+    r.fail(out, "'output' is the path of the output directory");
   scene.output_dir = ov.output_dir ? *ov.output_dir
                      : doc["output"]   ? doc["output"].Scalar()
                                        : "out/" + fs::path(path).stem().string();

@@ -2,6 +2,8 @@
 
 #include <muParser.h>
 
+#include <fmt/core.h>
+
 #include <cmath>
 #include <regex>
 
@@ -42,20 +44,40 @@ void Expressions::define(const std::string& name, const std::string& text, const
   const auto o = overrides.find(name);
   const double value = o != overrides.end() ? evaluate(o->second, "--set " + name, 0)
                                             : evaluate(text, file, line);
-  parser_->parser.DefineConst(name, value);
+  try {
+    parser_->parser.DefineConst(name, value);
+  } catch (const mu::ParserError& e) {
+    throw InputError(file, line, "'" + name + "' cannot be a parameter name: " + e.GetMsg());
+  }
   values_[name] = value;
 }
+
+namespace {
+/// muparser's message in the user's terms: a name it does not know is an unknown parameter.
+std::string explain(const mu::ParserError& e, const std::map<std::string, double>& defined) {
+  static const std::regex name_at_start("^[A-Za-z_][A-Za-z0-9_]*");
+  std::smatch name;
+  const std::string& token = e.GetToken();
+  if (e.GetCode() != mu::ecUNASSIGNABLE_TOKEN || !std::regex_search(token, name, name_at_start)) return e.GetMsg();
+  std::string known = "pi, e";
+  for (const auto& [parameter, value] : defined) known += ", " + parameter;
+  return "unknown parameter '" + name.str() + "' (defined so far: " + known + ")";
+}
+}  // namespace
 
 double Expressions::evaluate(const std::string& text, const std::string& file, int line) const {
   double value = 0;
   try {
     parser_->parser.SetExpr(text);
     value = parser_->parser.Eval();
-  } catch (const mu::Parser::exception_type& e) {
-    throw InputError(file, line, "bad expression '" + text + "': " + e.GetMsg());
+  } catch (const mu::ParserError& e) {
+    throw InputError(file, line, "bad expression '" + text + "': " + explain(e, values_));
   }
   if (!std::isfinite(value))
     throw InputError(file, line, "expression '" + text + "' is not a finite number");
+  if (std::abs(value) > max_magnitude)
+    throw InputError(file, line, fmt::format("'{}' = {:g} is out of range: numbers lie within ±{:g}", text, value,
+                                             max_magnitude));
   return value;
 }
 

@@ -56,9 +56,12 @@ bool is_joint(const Region2& r, PieceId a, PieceId b, const Vec2& q, double tol)
   return ends_at_q_before(a.index, b.index) || ends_at_q_before(b.index, a.index);
 }
 
+constexpr const char* outer_runs_clockwise =
+    "the outer boundary runs clockwise: list its pieces counter-clockwise (region on the left)";
+
 void check_orientation(const Region2& r) {
   if (!(signed_area(r.outer) > 0))
-    fail(r.outer.origin, "the outer boundary runs clockwise: list its pieces counter-clockwise (region on the left)");
+    fail(r.outer.origin, outer_runs_clockwise);
   for (const Loop& hole : r.holes)
     if (!(signed_area(hole) < 0))
       fail(hole.origin, "the hole runs counter-clockwise: list its pieces clockwise (region on the left)");
@@ -167,10 +170,18 @@ void validate(const Region2& region) {
   for (int k = 0; k < loop_count(region); ++k) check_loop(loop_of(region, k), k == 0 ? "outer boundary" : "hole");
   const double tol = joint_tolerance * diameter(region);
   check_arc_ends(region, tol);
-  if (has_elliptic_arc(region))
-    check_arrangement_conic(region, tol);
-  else
-    check_arrangement_circle_segment(region, tol);
+  try {
+    if (has_elliptic_arc(region))
+      check_arrangement_conic(region, tol);
+    else
+      check_arrangement_circle_segment(region, tol);
+  } catch (const InputError& e) {
+    // Pieces listed clockwise make arcs bulge the wrong way and cross: say so (a figure-eight,
+    // of zero area, is only crossed).
+    if (signed_area(region.outer) < 0 && e.message().find("clockwise") == std::string::npos)
+      throw InputError(e.file(), e.line(), e.message() + "; " + validation::outer_runs_clockwise);
+    throw;
+  }
 }
 
 }  // namespace billiards::geometry

@@ -3,6 +3,7 @@
 // of geometry3 that sees CGAL (it needs -frounding-math and compiles slowly).
 #include "billiards/geometry3/region3.hpp"
 
+#include "billiards/geometry/expression.hpp"
 #include "billiards/geometry/input_error.hpp"
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
@@ -20,6 +21,7 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 
@@ -109,24 +111,18 @@ double MeshLocator::distance(const Vec3& x) const {
 double MeshLocator::volume() const { return PMP::volume(impl_->mesh); }
 double MeshLocator::area() const { return PMP::area(impl_->mesh); }
 
-TriangleMesh read_mesh(const std::string& path, const SourceRef& where) {
-  const auto fail = [&](const std::string& msg) -> TriangleMesh {
-    throw InputError(where.file, where.line, "mesh " + path + ": " + msg);
-  };
-  const std::string ext = std::filesystem::path(path).extension().string();
-  if (ext != ".off" && ext != ".obj" && ext != ".stl") return fail("expected a .off, .obj or .stl file");
-  if (!std::filesystem::is_regular_file(path)) return fail("cannot open the file");
-  std::vector<Point> points;
-  Polygons polygons;
-  if (!CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false)) ||
-      polygons.empty())
-    return fail("cannot read it as " + ext.substr(1) + " (or it has no faces)");
-  for (const auto& p : polygons)
-    if (p.size() < 3) return fail("a face has fewer than 3 vertices");
-  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return fail(why_not_manifold(polygons));
+/// The polygon soup as a closed, outward-oriented, non-self-intersecting triangle mesh, or
+/// `fail`'s error.
+template <class Fail>
+TriangleMesh checked_mesh(const std::string& path, const std::vector<Point>& points, const Polygons& polygons,
+                          const Fail& fail) {
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-  if (!CGAL::is_triangle_mesh(mesh)) PMP::triangulate_faces(mesh);
+  const std::string untriangulable =
+      "a face with more than 3 vertices cannot be triangulated: it is not planar, crosses itself or repeats a vertex";
+  if (!CGAL::is_triangle_mesh(mesh) && (!PMP::triangulate_faces(mesh) || !CGAL::is_triangle_mesh(mesh)))
+    return fail(untriangulable);
+  if (!CGAL::is_valid_polygon_mesh(mesh)) return fail("not a valid surface: its faces do not join into one");
   if (!CGAL::is_closed(mesh)) return fail("not closed (it has boundary edges): it does not bound a region");
   for (auto f : mesh.faces())
     if (PMP::is_degenerate_triangle_face(f, mesh))
@@ -146,6 +142,43 @@ TriangleMesh read_mesh(const std::string& path, const SourceRef& where) {
   out.file = path;
   out.locator = std::make_shared<const MeshLocator>(out);
   return out;
+}
+
+TriangleMesh read_mesh(const std::string& path, const SourceRef& where) {
+  const auto fail = [&](const std::string& msg) -> TriangleMesh {
+    throw InputError(where.file, where.line, "mesh " + path + ": " + msg);
+  };
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext != ".off" && ext != ".obj" && ext != ".stl") return fail("expected a .off, .obj or .stl file");
+  if (!std::filesystem::is_regular_file(path)) return fail("cannot open the file");
+  std::vector<Point> points;
+  Polygons polygons;
+  bool read = false;
+  try {  // CGAL's readers size their lists by the counts in the file, however absurd
+    read = CGAL::IO::read_polygon_soup(path, points, polygons, CGAL::parameters::verbose(false));
+  } catch (const std::length_error&) {
+  } catch (const std::bad_alloc&) {
+  }
+  if (!read || polygons.empty()) return fail("cannot read it as " + ext.substr(1) + " (or it has no faces)");
+  for (std::size_t f = 0; f < polygons.size(); ++f) {
+    if (polygons[f].size() < 3) return fail("a face has fewer than 3 vertices");
+    for (const std::size_t v : polygons[f])
+      if (v >= points.size())
+        return fail("face " + std::to_string(f) + " refers to vertex " + std::to_string(v) + " (counting from 0), but there are " +
+                    std::to_string(points.size()) + " vertices");
+  }
+  for (const Point& p : points)
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(p[k]) <= Expressions::max_magnitude))
+        return fail("a vertex coordinate is not a number within ±1e30");
+  if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) return fail(why_not_manifold(polygons));
+  // CGAL checks its preconditions by throwing: on a surface it cannot process (a degenerate
+  // face, an invalid connectivity) that is this file's fault, reported as such.
+  try {
+    return checked_mesh(path, points, polygons, fail);
+  } catch (const CGAL::Failure_exception&) {
+    return fail("not a valid surface: a face is degenerate (repeated or collinear vertices) or faces meet badly");
+  }
 }
 
 }  // namespace billiards::geometry3

@@ -19,6 +19,10 @@ void add_override(Overrides& out, const std::string& assignment);
 
 class Expressions {
  public:
+  /// The largest magnitude of any number in an input: products of a few lengths, speeds and
+  /// energies stay far from overflow, and any physical system fits in some unit.
+  static constexpr double max_magnitude = 1e30;
+
   Expressions();
   ~Expressions();
   Expressions(Expressions&&) noexcept;
@@ -28,7 +32,8 @@ class Expressions {
   /// definitions may use earlier ones.  Throws on a bad name, a redefinition or a bad value.
   void define(const std::string& name, const std::string& text, const std::string& file, int line,
               const Overrides& overrides = {});
-  /// Evaluates `text` with the parameters defined so far (plus pi and e).
+  /// Evaluates `text` with the parameters defined so far (plus pi and e); fails unless the
+  /// value is finite and within ±max_magnitude.
   double evaluate(const std::string& text, const std::string& file, int line) const;
   /// Overrides that named no declared parameter (to be reported as errors by the caller).
   std::vector<std::string> unused(const Overrides& overrides) const;

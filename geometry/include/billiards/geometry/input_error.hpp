@@ -10,9 +10,11 @@ namespace billiards {
 class InputError : public std::runtime_error {
  public:
   InputError(std::string file, int line, const std::string& message)
-      : std::runtime_error(format(file, line, message)), file_(std::move(file)), line_(line) {}
+      : std::runtime_error(format(file, line, message)), file_(std::move(file)), line_(line), message_(message) {}
   const std::string& file() const { return file_; }
   int line() const { return line_; }
+  /// What is wrong, without the file and line.
+  const std::string& message() const { return message_; }
 
  private:
   static std::string format(const std::string& file, int line, const std::string& message) {
@@ -21,6 +23,7 @@ class InputError : public std::runtime_error {
   }
   std::string file_;
   int line_;
+  std::string message_;
 };
 
 }  // namespace billiards

@@ -9,10 +9,20 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <set>
 #include <string>
+#include <string_view>
 
 namespace billiards {
+
+/// A count as people write it: 1000, 1e+12.
+inline std::string format_count(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, v < 1e6 ? "%.0f" : "%g", v);
+  return text;
+}
 
 /// File/line-aware accessors over one YAML document whose numbers are expressions.
 class YamlReader {
@@ -53,11 +63,14 @@ class YamlReader {
     if (!(v > 0)) fail(n, what + " must be positive, got " + std::to_string(v));
     return v;
   }
-  std::size_t count(const YAML::Node& n, const std::string& what) const {
+  /// A whole number in [lo, hi] (hi at most 2^53, where doubles stop counting one by one).
+  std::uint64_t whole(const YAML::Node& n, const std::string& what, double lo, double hi) const {
     const double v = number(n);
-    if (!(v >= 1) || v != std::floor(v) || v > 1e12) fail(n, what + " must be a whole number ≥ 1");
-    return std::size_t(v);
+    if (!(v >= lo && v <= hi) || v != std::floor(v))
+      fail(n, what + " must be a whole number from " + format_count(lo) + " to " + format_count(hi));
+    return std::uint64_t(v);
   }
+  std::size_t count(const YAML::Node& n, const std::string& what) const { return whole(n, what, 1, 1e12); }
   /// Defines each parameter of a `parameters:` mapping, in order (later ones may use earlier
   /// ones); an override of the same name replaces its value.
   void define_parameters(const YAML::Node& params, const Overrides& overrides) const {
@@ -83,7 +96,10 @@ class YamlReader {
 
 /// The whole text of an input file; `what` names it in the error ("shape file").
 std::string read_input_file(const std::string& path, const std::string& what);
-/// Parses YAML text, reporting a syntax error at its line in `name`.
+/// Fails, naming the line, unless `text` is well-formed UTF-8.
+void check_utf8(std::string_view text, const std::string& name);
+/// Parses YAML text (UTF-8), reporting a syntax error, a duplicate key or a key that is not a
+/// name at its line in `name`.
 YAML::Node load_yaml(const std::string& text, const std::string& name);
 /// The comment lines at the top of a file, without their '#': what the file describes.
 std::string leading_comment(const std::string& text);
