@@ -692,8 +692,7 @@ template <class Real, class Visit>
 void first_hit_in_windows(int walls, Visit visit, Real& tau_best, int& best_wall, PhaseSample<Real>& phase) {
   using std::min;
   // The windows as they are found (uninitialized storage), and their order of opening sorted
-  // by insertion, stable.  (Sorting the windows themselves by swaps, in a small_vector of
-  // default-initialized windows, made the driven clover 1.1× slower: BENCHMARKS.md.)
+  // by insertion, stable: cheaper than swapping the windows themselves.
   if (walls > windows_in_time_order_walls) throw std::logic_error("first_hit_in_windows: too many walls");
   Window<Real> windows[2 * windows_in_time_order_walls];
   unsigned char order[2 * windows_in_time_order_walls];

@@ -91,8 +91,8 @@ template <class Flight>
 FlightHit<Flight> collision(const BasicTable<typename Flight::Scalar>& table, const Flight& flight,
                             const typename Flight::State& s, const typename Flight::Scalar& t_end = never) {
   const auto scan = detail::scan_from(flight, s);
-  // (Made in place, not assigned: copying a driven state just after its long double phase was
-  // stored made the driven clover 3-4% slower, BENCHMARKS.md.)
+  // (Made in place, not assigned: copying a driven state just after its phase was stored costs
+  // a store-forwarding stall per collision.)
   FlightHit<Flight> best = [&] {
     if constexpr (requires { scan.first_hit(table, t_end); }) {
       return scan.first_hit(table, t_end);  // (with the state at the hit)
