@@ -8,6 +8,8 @@
 #include "billiards/geometry/shape_file.hpp"
 
 #include <boost/multiprecision/mpfr.hpp>
+#include "brute_force_root.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -37,25 +39,6 @@ T outside(const geometry::EllipticArc& e, const T& x, const T& y) {
   return u * u + w * w - 1;
 }
 
-/// First time after 0 at which f goes from < 0 to > 0: sampled every h in long double, then
-/// bisected in MPFR; −1 when none before t_max.
-template <class F>
-double first_upward_root(F f, double h, double t_max) {
-  long double before = f.template operator()<long double>(0.0L);
-  for (long n = 1; n * h <= t_max; ++n) {
-    const long double t = (long double)n * h, now = f.template operator()<long double>(t);
-    if (before < 0 && now > 0) {
-      Real a = Real(double(n - 1)) * h, b = Real(double(n)) * h;
-      for (int k = 0; k < 120; ++k) {
-        const Real m = (a + b) / 2;
-        (f.template operator()<Real>(m) > 0 ? b : a) = m;
-      }
-      return static_cast<double>(b);
-    }
-    before = now;
-  }
-  return -1;
-}
 
 }  // namespace
 
@@ -131,9 +114,9 @@ TEST_CASE("forced flights' exit times through elliptic arcs equal a brute-force 
       };
       const double h = std::min(2 * pi / omega / 256, 1e-3);
       const auto s = drive.start(s0);
-      check(first_upward_root(driven, h, 3.0), dynamics::elliptic_exit_time(drive, s, wall, 3.0),
+      check(brute_force::first_upward_root(driven, h, 3.0), dynamics::elliptic_exit_time(drive, s, wall, 3.0),
             [&](double t) { return drive.advance(s, t).x; }, "drive");
-      check(first_upward_root(parabola, 1e-3, 3.0), dynamics::elliptic_exit_time(gravity, s0, wall, 3.0),
+      check(brute_force::first_upward_root(parabola, 1e-3, 3.0), dynamics::elliptic_exit_time(gravity, s0, wall, 3.0),
             [&](double t) { return gravity.advance(s0, t).x; }, "static force");
     }
   }

@@ -6,6 +6,8 @@
 #include "billiards/geometry.hpp"
 
 #include <boost/multiprecision/mpfr.hpp>
+#include "brute_force_root.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -37,25 +39,6 @@ std::pair<std::array<T, 2>, std::array<T, 2>> reference(const Vec2& x0, const Ve
   return {x, v};
 }
 
-/// First outward crossing of f(t) (from < 0 to > 0) after t = 0: fine sampling in long double,
-/// then bisection in MPFR; -1 if none before t_max.
-template <class F>
-double brute_force_root(F f, double h, double t_max) {
-  long double flo = f.template operator()<long double>(0.0L);
-  for (long n = 1; n * h <= t_max; ++n) {
-    const long double t = (long double)n * h, ft = f.template operator()<long double>(t);
-    if (flo < 0 && ft > 0) {
-      Real a = Real(double(n - 1)) * h, b = Real(double(n)) * h;
-      for (int k = 0; k < 120; ++k) {
-        const Real m = (a + b) / 2;
-        (f.template operator()<Real>(m) > 0 ? b : a) = m;
-      }
-      return static_cast<double>(b);
-    }
-    flo = ft;
-  }
-  return -1;
-}
 
 }  // namespace
 
@@ -113,7 +96,7 @@ TEST_CASE("certified exit times equal a brute-force MPFR root scan") {
       const double h = std::min(2 * pi / omega / 256, 2e-3);
       auto check = [&](const auto& wall, auto f, const char* what) {
         INFO(what << " omega " << omega << " case " << k);
-        const double expected = brute_force_root(f, h, 2.0);
+        const double expected = brute_force::first_upward_root(f, h, 2.0);
         const double got = flight.exit_time(flight.start(s0), wall, 2.0);
         if (expected < 0) {
           CHECK(got == dynamics::never);
