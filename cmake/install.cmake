@@ -22,6 +22,8 @@ install(FILES ${PROJECT_BINARY_DIR}/billiardsConfig.cmake ${PROJECT_BINARY_DIR}/
 install(TARGETS billiard RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY shapes scenes DESTINATION ${CMAKE_INSTALL_DATADIR}/billiards)
 install(DIRECTORY scripts/ DESTINATION ${CMAKE_INSTALL_DATADIR}/billiards/scripts FILES_MATCHING PATTERN "*.py")
+# billiardkit's drawing of movies, which scripts/plot_animate.py loads from beside itself.
+install(FILES python/billiardkit/movie.py DESTINATION ${CMAKE_INSTALL_DATADIR}/billiards/scripts)
 
 # `cpack -G DEB` (run in the build folder): a Debian package of the files above, under /usr.
 # dpkg-shlibdeps finds the run-time libraries billiard needs; its plotting scripts need
