@@ -236,7 +236,12 @@ template <class Flight>
 void run_in_chunks(const Scene& scene, const Flight& flight, bool verify, int threads,
                    dynamics::EnsembleResult& result, const py::object& progress) {
   const auto table = dynamics::table_of<Flight>(scene);
-  const auto opt = dynamics::run_options<Flight>(scene, verify);
+  auto opt = dynamics::run_options<Flight>(scene, verify);
+  // A single particle may run for minutes: Ctrl-C is checked within the chunks too.
+  opt.keep_going = [] {
+    py::gil_scoped_acquire locked;
+    return PyErr_CheckSignals() == 0;
+  };
   const auto initial = dynamics::initial_states(scene, table, flight);
   const std::size_t n = scene.particles;
   std::size_t chunk = 16 * std::size_t(threads);
@@ -247,6 +252,7 @@ void run_in_chunks(const Scene& scene, const Flight& flight, bool verify, int th
       py::gil_scoped_release unlocked;
       dynamics::run_particles(table, flight, initial, opt, first, last, threads, result);
     }
+    if (PyErr_Occurred()) throw py::error_already_set();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     first = last;
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
@@ -332,17 +338,19 @@ struct TrajectoryRows {
 
   template <class State>
   void add_bounce(const State& s, int wall) {
-    t.push_back(s.t);
-    x.insert(x.end(), s.x.data(), s.x.data() + d);
-    v.insert(v.end(), s.v.data(), s.v.data() + d);
+    add(t, x, v, s);
     walls.push_back(wall);
   }
   template <class State>
   void add_sample(const State& s, double energy) {
-    st.push_back(s.t);
-    sx.insert(sx.end(), s.x.data(), s.x.data() + d);
-    sv.insert(sv.end(), s.v.data(), s.v.data() + d);
+    add(st, sx, sv, s);
     se.push_back(energy);
+  }
+  template <class State>
+  static void add(std::vector<double>& times, std::vector<double>& xs, std::vector<double>& vs, const State& s) {
+    times.push_back(s.t);
+    xs.insert(xs.end(), s.x.data(), s.x.data() + s.x.size());
+    vs.insert(vs.end(), s.v.data(), s.v.data() + s.v.size());
   }
   std::size_t rows() const { return std::max(t.size(), st.size()); }
   /// The rows as numpy arrays (samples: None when not sampled); the rows are emptied.

@@ -11,7 +11,6 @@ installed or in the source tree's python/billiardkit.  --progress: a frame count
 """
 import importlib.util
 import json
-import os
 import pathlib
 import sys
 

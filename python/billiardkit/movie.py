@@ -7,6 +7,7 @@ This file needs only numpy and matplotlib (no billiardkit._core), so that `billi
 ffmpeg (matplotlib's FFMpegWriter), GIF by Pillow (or ffmpeg when Pillow is missing).  The movie
 is written to a temporary name beside `output` and renamed into place when complete.
 """
+import importlib.util
 import os
 
 import numpy as np
@@ -109,12 +110,8 @@ class _Painter:
 def _writer(output, fps):
     from matplotlib import animation
     ext = os.path.splitext(output)[1].lower()
-    if ext == ".gif":
-        try:
-            import PIL  # noqa: F401
-            return animation.PillowWriter(fps=fps)
-        except ImportError:
-            pass
+    if ext == ".gif" and importlib.util.find_spec("PIL") is not None:
+        return animation.PillowWriter(fps=fps)
     if not animation.FFMpegWriter.isAvailable():
         raise RuntimeError(f"writing {ext} needs ffmpeg (Debian: apt install ffmpeg)")
     if ext == ".gif":

@@ -2,17 +2,15 @@
 `billiard animate`): checked against closed forms, against each other, and by decoding the movie."""
 import json
 import shutil
-import signal
 import subprocess
 import sys
-import time
 
 import numpy as np
 import pytest
 
 import billiardkit as bk
 from billiardkit import movie
-from conftest import BINARY
+from conftest import BINARY, interrupted
 
 
 def scene(source, name="clover-driven", **kw):
@@ -89,15 +87,22 @@ def test_ctrl_c_interrupts_a_long_trajectory(source, streamed):
               f"    bk.trajectory(scene, collisions=10**9, progress=False{sink})\n"
               "except KeyboardInterrupt:\n"
               "    print('interrupted', flush=True); sys.exit(3)\n")
-    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
-    assert proc.stdout.readline() == "started\n"
-    time.sleep(0.5)
-    proc.send_signal(signal.SIGINT)
-    try:
-        out, _ = proc.communicate(timeout=30)
-    finally:
-        proc.kill()
-    assert proc.returncode == 3 and out == "interrupted\n"
+    assert interrupted(script) == (3, "interrupted\n")
+
+
+def test_ctrl_c_interrupts_a_single_long_particle(source):
+    """SIGINT during `run` of two particles that each run for hours raises KeyboardInterrupt: the
+    particles check for it as they go, not only between chunks of particles."""
+    script = ("import billiardkit as bk, sys\n"
+              f"shape = bk.load_shape({str(source / 'shapes' / 'clover.yaml')!r})\n"
+              "scene = bk.Scene(shape, force={'periodic': {'amplitude': [1, 1], 'omega': 100}}, energy=0.5,\n"
+              "                 particles=2, time=4e7, record=[1.0])\n"
+              "print('started', flush=True)\n"
+              "try:\n"
+              "    bk.run(scene, threads=1, progress=False)\n"
+              "except KeyboardInterrupt:\n"
+              "    print('interrupted', flush=True); sys.exit(3)\n")
+    assert interrupted(script) == (3, "interrupted\n")
 
 
 # --- animations ----------------------------------------------------------------------------
