@@ -421,7 +421,7 @@ py::dict trace(const Table& table, const Flight& flight, typename Flight::State 
 
 TraceOptions trace_options(std::size_t collisions, double dt, double time, double mass, py::object on_chunk,
                            std::size_t chunk, py::object progress) {
-  return {{collisions, time}, dt, mass, std::move(on_chunk), chunk, std::move(progress)};
+  return {{.collisions = collisions, .t_end = time}, dt, mass, std::move(on_chunk), chunk, std::move(progress)};
 }
 
 py::dict scene_trajectory(const Scene& scene, std::size_t collisions, std::size_t particle, double dt, double time,

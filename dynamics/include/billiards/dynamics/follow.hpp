@@ -36,18 +36,21 @@ void sample_flight(const Flight& flight, const typename Flight::State& s, double
 struct FollowLimits {
   std::size_t collisions = std::numeric_limits<std::size_t>::max();
   double t_end = never;
+  /// Consecutive bounces at zero flight time before the particle is declared stuck (as
+  /// RunOptions's), which ends the stream as an escape instead of looping in a corner forever.
+  int max_zero_flights = 1000;
 };
 
 struct FollowResult {
   std::size_t collisions = 0;
-  bool escaped = false;  // met no wall where a straight flight (or any flight with no end time) must
+  bool escaped = false;  // met no wall where it must, or stuck
 };
 
 /// Follows the particle from `s`: on_bounce(hit, state) with the state just after each bounce,
 /// on_sample(state) at each time of `clock` (the state before a bounce that falls on one), up to
 /// the limits.  A flight that meets no wall is an escape for a straight flight (searched with no
 /// horizon, as Trajectory does) or when there is no end time; a curved flight searched up to
-/// t_end meets none when it reaches t_end first.  Energy-conserving flights restore the speed
+/// t_end meets none when it reaches t_end first.  A particle stuck in a corner is an escape too.  Energy-conserving flights restore the speed
 /// after every bounce, as `evolve` does, so both give the same states bit for bit.
 template <class TableT, class Flight, class OnBounce, class OnSample>
 FollowResult follow(const TableT& table, const Flight& flight, typename Flight::State s, const FollowLimits& limits,
@@ -55,6 +58,7 @@ FollowResult follow(const TableT& table, const Flight& flight, typename Flight::
   const auto v2 = s.v.squaredNorm();
   const double horizon = is_straight<Flight> ? never : limits.t_end;
   FollowResult result;
+  int zero_flights = 0;
   while (result.collisions < limits.collisions) {
     const auto hit = collision(table, flight, s, horizon);
     if (!hit.found() && horizon == never) {
@@ -64,6 +68,11 @@ FollowResult follow(const TableT& table, const Flight& flight, typename Flight::
     const bool ends = !hit.found() || hit.t > limits.t_end;
     sample_flight(flight, s, ends ? limits.t_end : double(hit.t), clock, on_sample);
     if (ends) break;
+    zero_flights = hit.t == s.t ? zero_flights + 1 : 0;
+    if (zero_flights > limits.max_zero_flights) {
+      result.escaped = true;
+      break;
+    }
     bounce(flight, s, hit);
     if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
     ++result.collisions;
