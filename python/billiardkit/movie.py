@@ -83,6 +83,24 @@ class _Painter:
             top = max(np.quantile(finite, 0.999) if finite.size else 0, tail.max() if tail.size else 0)
             self.bins = np.linspace(0, 1.05 * top, 40)
             self.e_fp, self.density = e_fp, density
+            self._histogram_axes(hist_ax)
+
+    def _histogram_axes(self, ax):
+        """The panel's artists, made once and updated frame by frame (a new histogram drawn each
+        frame costs several times the rest of the frame): the bars and the density's line."""
+        self.counts = [self._histogram(k) for k in range(len(self.times))]
+        self.bars = ax.bar(self.bins[:-1], self.counts[0], width=np.diff(self.bins), align="edge", color="#7aa6d6",
+                           label=f"simulation, N = {self.E.shape[1]}")
+        (self.curve,) = ax.plot([], [], color="k", lw=1.2, label="Fokker–Planck")
+        ax.set_xlim(self.bins[0], self.bins[-1])
+        ax.set_xlabel("energy E")
+        ax.set_ylabel("density")
+        ax.legend(loc="upper right", fontsize=8)
+
+    def _histogram(self, k):
+        E = self.E[k][np.isfinite(self.E[k])]
+        counts, _ = np.histogram(E, bins=self.bins, density=E.size > 0)
+        return counts.astype(float)
 
     def __call__(self, k):
         x = self.x[k]
@@ -92,19 +110,13 @@ class _Painter:
             self.trails.set_segments([self.x[first:k + 1, i] for i in range(x.shape[0])])
         self.heading.set_text(f"{self.title}   t = {self.times[k]:.4g}")
         if self.hist_ax is not None:
-            self._histogram(k)
-
-    def _histogram(self, k):
-        ax = self.hist_ax
-        ax.clear()
-        E = self.E[k][np.isfinite(self.E[k])]
-        ax.hist(E, bins=self.bins, density=True, color="#7aa6d6", label=f"simulation, N = {E.size}")
-        if k > 0:
-            ax.plot(self.e_fp, self.density[k - 1], color="k", lw=1.2, label="Fokker–Planck")
-        ax.set_xlim(self.bins[0], self.bins[-1])
-        ax.set_xlabel("energy E")
-        ax.set_ylabel("density")
-        ax.legend(loc="upper right", fontsize=8)
+            for bar, height in zip(self.bars, self.counts[k]):
+                bar.set_height(height)
+            top = self.counts[k].max()
+            if k > 0:
+                self.curve.set_data(self.e_fp, self.density[k - 1])
+                top = max(top, self.density[k - 1].max())
+            self.hist_ax.set_ylim(0, 1.1 * top if top > 0 else 1)
 
 
 def _writer(output, fps):
