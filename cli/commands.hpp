@@ -14,6 +14,7 @@ void add_plot(CLI::App& app);
 void add_fp(CLI::App& app);
 void add_compare(CLI::App& app);
 void add_bench(CLI::App& app);
+void add_animate(CLI::App& app);
 
 /// The command line as typed, recorded in summary.json.
 void set_command_line(int argc, char** argv);

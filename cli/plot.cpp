@@ -107,17 +107,6 @@ nlohmann::json shape3_data(const std::string& path, const Overrides& set, int co
   return {{"dimension", 3}, {"title", title}, {"faces", faces}, {"spheres", spheres}, {"trajectory", trajectory}};
 }
 
-/// Removes its file when it goes out of scope (or the program is interrupted), so no exit path
-/// leaves temporaries behind.
-struct TempFile {
-  fs::path path;
-  Unfinished unfinished{path};
-  ~TempFile() {
-    std::error_code ignored;
-    fs::remove(path, ignored);
-  }
-};
-
 /// The formats matplotlib writes without extra libraries; the output's extension picks one.
 void require_picture_format(const fs::path& output) {
   const std::string ext = output.extension().string();
@@ -125,9 +114,7 @@ void require_picture_format(const fs::path& output) {
     throw InputError("-o " + output.string(), 0, "the picture's format follows its extension: .png, .pdf or .svg");
 }
 
-/// Draws `data` into `output`.  The script draws into a temporary file next to `output` that
-/// is renamed into place only on success, so `output` is either the complete picture or
-/// untouched.
+/// Draws `data` into `output` (draw_into: complete or untouched).
 void draw(const nlohmann::json& data, const fs::path& output) {
   const fs::path script = script_path(data.value("dimension", 2) == 3 ? "plot_shape3.py" : "plot_shape.py");
   const TempFile json{fs::temp_directory_path() / fmt::format("billiard-plot-{}.json", getpid())};
@@ -135,14 +122,7 @@ void draw(const nlohmann::json& data, const fs::path& output) {
   out << data.dump();
   out.close();
   if (!out) throw std::runtime_error("cannot write " + json.path.string());
-  try {
-    if (output.has_parent_path()) fs::create_directories(output.parent_path());
-  } catch (const fs::filesystem_error& e) {
-    throw InputError("-o " + output.string(), 0, "cannot create its directory: " + e.code().message());
-  }
-  TempFile picture{fs::path(output.string() + fmt::format(".tmp-{}", getpid()) + output.extension().string())};
-  run_python(script, {json.path.string(), picture.path.string()});
-  picture.unfinished.commit(output);
+  draw_into(script, json.path, output);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "python.hpp"
 
+#include "billiards/geometry/input_error.hpp"
+
 #include "interrupt.hpp"
 
 #include <fmt/core.h>
@@ -84,6 +86,25 @@ void run_python(const fs::path& script, const std::vector<std::string>& args) {
                                             : fmt::format("signal {}", WTERMSIG(status));
   throw std::runtime_error(fmt::format("drawing failed: {} ended with {}{}{}", script.filename().string(), how,
                                        message.empty() ? "" : ": ", message));
+}
+
+TempFile::~TempFile() {
+  std::error_code ignored;
+  fs::remove(path, ignored);
+}
+
+void draw_into(const fs::path& script, const fs::path& input, const fs::path& output,
+               const std::vector<std::string>& extra) {
+  try {
+    if (output.has_parent_path()) fs::create_directories(output.parent_path());
+  } catch (const fs::filesystem_error& e) {
+    throw InputError("-o " + output.string(), 0, "cannot create its directory: " + e.code().message());
+  }
+  TempFile picture{fs::path(output.string() + fmt::format(".tmp-{}", getpid()) + output.extension().string())};
+  std::vector<std::string> args = {input.string(), picture.path.string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  run_python(script, args);
+  picture.unfinished.commit(output);
 }
 
 }  // namespace billiards::cli

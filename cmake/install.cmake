@@ -22,10 +22,13 @@ install(FILES ${PROJECT_BINARY_DIR}/billiardsConfig.cmake ${PROJECT_BINARY_DIR}/
 install(TARGETS billiard RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY shapes scenes DESTINATION ${CMAKE_INSTALL_DATADIR}/billiards)
 install(DIRECTORY scripts/ DESTINATION ${CMAKE_INSTALL_DATADIR}/billiards/scripts FILES_MATCHING PATTERN "*.py")
+# billiardkit's drawing of movies, which scripts/plot_animate.py loads from beside itself.
+install(FILES python/billiardkit/movie.py DESTINATION ${CMAKE_INSTALL_DATADIR}/billiards/scripts)
 
 # `cpack -G DEB` (run in the build folder): a Debian package of the files above, under /usr.
 # dpkg-shlibdeps finds the run-time libraries billiard needs; its plotting scripts need
-# matplotlib; find_package(billiards) needs the -dev packages the libraries were built with.
+# matplotlib; `billiard animate` needs ffmpeg (and Pillow for GIF), recommended; find_package(billiards)
+# needs the -dev packages the libraries were built with.
 set(CPACK_PACKAGE_NAME billiards)
 set(CPACK_PACKAGE_VENDOR "billiards")
 set(CPACK_PACKAGE_CONTACT "billiards maintainers <billiards@localhost>")
@@ -35,5 +38,5 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-matplotlib, python3-numpy")
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "cmake, g++, libcgal-dev, libeigen3-dev, libgmp-dev, libmpfr-dev, libyaml-cpp-dev, libmuparser-dev, libginac-dev, pkg-config, libfmt-dev, nlohmann-json3-dev, libboost-dev")
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "ffmpeg, python3-pil, cmake, g++, libcgal-dev, libeigen3-dev, libgmp-dev, libmpfr-dev, libyaml-cpp-dev, libmuparser-dev, libginac-dev, pkg-config, libfmt-dev, nlohmann-json3-dev, libboost-dev")
 include(CPack)

@@ -6,7 +6,9 @@
 #include "billiards/analysis/coefficients.hpp"
 #include "billiards/analysis/fokker_planck.hpp"
 #include "billiards/analysis/statistics.hpp"
+#include "billiards/dynamics/follow.hpp"
 #include "billiards/dynamics/random.hpp"
+#include "billiards/dynamics/scene_frames.hpp"
 #include "billiards/dynamics/scene_run.hpp"
 #include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/shape_file.hpp"
@@ -23,6 +25,8 @@
 #include <omp.h>
 
 #include <chrono>
+#include <cmath>
+#include <stdexcept>
 #include <memory>
 #include <optional>
 
@@ -232,7 +236,12 @@ template <class Flight>
 void run_in_chunks(const Scene& scene, const Flight& flight, bool verify, int threads,
                    dynamics::EnsembleResult& result, const py::object& progress) {
   const auto table = dynamics::table_of<Flight>(scene);
-  const auto opt = dynamics::run_options<Flight>(scene, verify);
+  auto opt = dynamics::run_options<Flight>(scene, verify);
+  // A single particle may run for minutes: Ctrl-C is checked within the chunks too.
+  opt.keep_going = [] {
+    py::gil_scoped_acquire locked;
+    return PyErr_CheckSignals() == 0;
+  };
   const auto initial = dynamics::initial_states(scene, table, flight);
   const std::size_t n = scene.particles;
   std::size_t chunk = 16 * std::size_t(threads);
@@ -243,6 +252,7 @@ void run_in_chunks(const Scene& scene, const Flight& flight, bool verify, int th
       py::gil_scoped_release unlocked;
       dynamics::run_particles(table, flight, initial, opt, first, last, threads, result);
     }
+    if (PyErr_Occurred()) throw py::error_already_set();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     first = last;
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
@@ -277,49 +287,205 @@ py::dict run(const std::shared_ptr<Scene>& scene_ptr, int threads, bool verify, 
                   "prediction"_a = prediction ? to_python(nlohmann::json(*prediction)) : py::none());
 }
 
-/// The start and the state just after each bounce: times (K+1), positions and velocities
-/// (K+1, d), walls (K+1, the start has −1).  Fewer rows if the particle escaped.
-template <class Table, class Flight>
-py::dict trace(const Table& table, const Flight& flight, typename Flight::State s, std::size_t collisions) {
-  const auto d = py::ssize_t(s.x.size());
-  std::vector<double> t{s.t}, x(s.x.data(), s.x.data() + d), v(s.v.data(), s.v.data() + d);
-  std::vector<int> walls{-1};
-  std::size_t made = 0;
-  {
-    py::gil_scoped_release unlocked;
-    made = dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto& after) {
-      t.push_back(after.t);
-      x.insert(x.end(), after.x.data(), after.x.data() + d);
-      v.insert(v.end(), after.v.data(), after.v.data() + d);
-      // 2-D: the wall's position in the shape file (pieces counted loop by loop).
-      if constexpr (std::is_same_v<std::decay_t<decltype(hit.wall)>, dynamics::WallId>)
-        walls.push_back(table.piece_of(hit.wall));
-      else
-        walls.push_back(hit.wall);
-    });
+/// Raised inside a run with the GIL released when Python has an error to raise (Ctrl-C, or an
+/// exception in a callback): the error indicator is set, and the caller raises it with the GIL.
+struct PythonErrorPending {};
+
+/// Runs `f` with the GIL held from code that released it; a Python error it raises is kept in
+/// the error indicator and becomes PythonErrorPending.
+template <class F>
+void with_gil(F&& f) {
+  py::gil_scoped_acquire locked;
+  try {
+    f();
+  } catch (py::error_already_set& e) {
+    e.restore();
+    throw PythonErrorPending{};
   }
-  const auto rows = py::ssize_t(t.size());
-  return py::dict("times"_a = adopt(std::move(t), {rows}), "positions"_a = adopt(std::move(x), {rows, d}),
-                  "velocities"_a = adopt(std::move(v), {rows, d}), "walls"_a = adopt(std::move(walls), {rows}),
-                  "escaped"_a = made < collisions);
 }
 
-py::dict scene_trajectory(const Scene& scene, std::size_t collisions, std::size_t particle) {
+/// Lets a long run with the GIL released answer Ctrl-C and show progress: about every tenth of
+/// a second it takes the GIL, checks for signals and calls progress(collisions, t).
+class Heartbeat {
+ public:
+  explicit Heartbeat(py::object progress) : progress_(std::move(progress)) {}
+  void operator()(std::size_t collisions, double t) {
+    if (++calls_ % 1024 != 0) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_ < std::chrono::milliseconds(100)) return;
+    last_ = now;
+    with_gil([&] {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!progress_.is_none()) progress_(collisions, t);
+    });
+  }
+
+ private:
+  py::object progress_;
+  std::size_t calls_ = 0;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+/// A trajectory's rows as they come: the start and the state just after each bounce (times,
+/// positions, velocities, walls; the start has wall −1), and the samples between bounces (times,
+/// positions, velocities, energies).
+struct TrajectoryRows {
+  TrajectoryRows(py::ssize_t d, bool sampled) : d(d), sampled(sampled) {}
+  py::ssize_t d;
+  bool sampled;
+  std::vector<double> t, x, v, st, sx, sv, se;
+  std::vector<int> walls;
+
+  template <class State>
+  void add_bounce(const State& s, int wall) {
+    add(t, x, v, s);
+    walls.push_back(wall);
+  }
+  template <class State>
+  void add_sample(const State& s, double energy) {
+    add(st, sx, sv, s);
+    se.push_back(energy);
+  }
+  template <class State>
+  static void add(std::vector<double>& times, std::vector<double>& xs, std::vector<double>& vs, const State& s) {
+    times.push_back(s.t);
+    xs.insert(xs.end(), s.x.data(), s.x.data() + s.x.size());
+    vs.insert(vs.end(), s.v.data(), s.v.data() + s.v.size());
+  }
+  std::size_t rows() const { return std::max(t.size(), st.size()); }
+  /// The rows as numpy arrays (samples: None when not sampled); the rows are emptied.
+  py::dict take() {
+    const auto n = py::ssize_t(t.size()), m = py::ssize_t(st.size());
+    py::object samples = py::none();
+    if (sampled)
+      samples = py::dict("times"_a = adopt(std::exchange(st, {}), {m}), "positions"_a = adopt(std::exchange(sx, {}), {m, d}),
+                         "velocities"_a = adopt(std::exchange(sv, {}), {m, d}), "energies"_a = adopt(std::exchange(se, {}), {m}));
+    return py::dict("times"_a = adopt(std::exchange(t, {}), {n}), "positions"_a = adopt(std::exchange(x, {}), {n, d}),
+                    "velocities"_a = adopt(std::exchange(v, {}), {n, d}), "walls"_a = adopt(std::exchange(walls, {}), {n}),
+                    "samples"_a = samples);
+  }
+};
+
+/// How far to follow a trajectory and what to do with its rows.
+struct TraceOptions {
+  dynamics::FollowLimits limits;
+  double dt = 0;                 // sample spacing (0: bounces only)
+  double mass = 1;
+  py::object on_chunk;           // None: collect every row and return them
+  std::size_t chunk = 65536;
+  py::object progress;
+};
+
+/// Follows the particle from `s` (dynamics::follow) with the GIL released.  Collecting: a dict of
+/// the rows and `escaped`.  Streaming (on_chunk): on_chunk(rows) with at most `chunk` rows at a
+/// time, none kept, and a dict of `collisions` and `escaped`.
+template <class Table, class Flight>
+py::dict trace(const Table& table, const Flight& flight, typename Flight::State s, const TraceOptions& opt) {
+  if (!(opt.dt >= 0) || !std::isfinite(opt.dt)) throw py::value_error("dt must be a finite number >= 0");
+  if (opt.chunk == 0) throw py::value_error("chunk must be positive");
+  const bool streaming = !opt.on_chunk.is_none();
+  TrajectoryRows rows(py::ssize_t(s.x.size()), opt.dt > 0);
+  rows.add_bounce(s, -1);
+  const auto flush = [&](bool last) {
+    if (!streaming || (!last && rows.rows() < opt.chunk)) return;
+    with_gil([&] { opt.on_chunk(rows.take()); });
+  };
+  Heartbeat heartbeat(opt.progress);
+  dynamics::FollowResult made;
+  try {
+    py::gil_scoped_release unlocked;
+    const auto on_bounce = [&](const auto& hit, const auto& after) {
+      // 2-D: the wall's position in the shape file (pieces counted loop by loop).
+      if constexpr (std::is_same_v<std::decay_t<decltype(hit.wall)>, dynamics::WallId>)
+        rows.add_bounce(after, table.piece_of(hit.wall));
+      else
+        rows.add_bounce(after, hit.wall);
+      flush(false);
+      heartbeat(rows.t.size(), after.t);
+    };
+    const auto on_sample = [&](const auto& state) {
+      rows.add_sample(state, dynamics::energy_of(flight, state, opt.mass));
+      flush(false);
+      heartbeat(rows.t.size(), state.t);
+    };
+    made = dynamics::follow(table, flight, s, opt.limits, dynamics::SampleClock{s.t, opt.dt}, on_bounce, on_sample);
+    flush(true);
+  } catch (const PythonErrorPending&) {
+    throw py::error_already_set();
+  }
+  if (streaming) return py::dict("collisions"_a = made.collisions, "escaped"_a = made.escaped);
+  auto out = rows.take();
+  out["escaped"] = made.escaped;
+  return out;
+}
+
+TraceOptions trace_options(std::size_t collisions, double dt, double time, double mass, py::object on_chunk,
+                           std::size_t chunk, py::object progress) {
+  return {{.collisions = collisions, .t_end = time}, dt, mass, std::move(on_chunk), chunk, std::move(progress)};
+}
+
+py::dict scene_trajectory(const Scene& scene, std::size_t collisions, std::size_t particle, double dt, double time,
+                          py::object on_chunk, std::size_t chunk, py::object progress) {
   if (particle >= scene.particles) throw py::index_error("particle index beyond the scene's particles");
+  const auto opt = trace_options(collisions, dt, time, scene.mass, std::move(on_chunk), chunk, std::move(progress));
   return dynamics::with_flight(scene, [&](const auto& flight) {
     const auto table = dynamics::table_of<std::decay_t<decltype(flight)>>(scene);
-    return trace(table, flight, dynamics::initial_states(scene, table, flight)(particle), collisions);
+    return trace(table, flight, dynamics::initial_states(scene, table, flight)(particle), opt);
   });
 }
 
 /// A free trajectory in a Shape (Flight = FreeFlight) or a Shape3 (FreeFlight3).
 template <class Flight, class S>
 py::dict shape_trajectory(const S& shape, std::size_t collisions, std::uint64_t seed, std::size_t particle,
-                          double speed) {
+                          double speed, double dt, double time, py::object on_chunk, std::size_t chunk,
+                          py::object progress) {
   if (!(speed > 0)) throw py::value_error("speed must be positive");
   const dynamics::TableFor<Flight> table(shape.region);
   dynamics::ParticleRng rng(seed, particle);
-  return trace(table, Flight{}, sample_microcanonical(table, speed, rng), collisions);
+  return trace(table, Flight{}, sample_microcanonical(table, speed, rng),
+               trace_options(collisions, dt, time, 1.0, std::move(on_chunk), chunk, std::move(progress)));
+}
+
+/// The frames of an animation (dynamics::fill_frames), computed in chunks of particles so that
+/// Ctrl-C raises KeyboardInterrupt between them: times (K,), positions (K, N, d), energies (K, N),
+/// escaped (N,), and the Fokker–Planck density at each frame time after the first when the
+/// theory covers the scene (fp_energies (cells,), fp_density (K − 1, cells)), else None.
+py::dict scene_frames(const Scene& scene, std::size_t particles, std::size_t frames, double time, int threads,
+                      const py::object& progress) {
+  if (particles == 0 || particles > scene.particles)
+    throw py::value_error(fmt::format("particles must be from 1 to the scene's {}", scene.particles));
+  if (threads <= 0) threads = omp_get_max_threads();
+  dynamics::SceneFrames f;
+  try {
+    f = dynamics::empty_frames(scene, particles, frames, time);
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+  for (std::size_t first = 0; first < particles;) {
+    const std::size_t last = std::min(particles, first + 4 * std::size_t(threads));
+    {
+      py::gil_scoped_release unlocked;
+      dynamics::fill_frames(scene, f, first, last, threads);
+    }
+    first = last;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    if (!progress.is_none()) progress(first, particles);
+  }
+  const auto K = py::ssize_t(frames), N = py::ssize_t(particles), d = py::ssize_t(f.dimension);
+  const std::vector<double> scene_times = f.times;
+  py::dict out("times"_a = adopt(std::move(f.times), {K}), "positions"_a = adopt(std::move(f.positions), {K, N, d}),
+               "energies"_a = adopt(std::move(f.energies), {K, N}), "escaped"_a = adopt(std::move(f.escaped), {N}),
+               "fp_energies"_a = py::none(), "fp_density"_a = py::none());
+  const std::vector<double> later(scene_times.begin() + 1, scene_times.end());
+  if (const auto fp = analysis::fokker_planck_of(scene, later, 400)) {
+    std::vector<double> centers, density;
+    for (std::size_t i = 0; i < fp->grid.cells(); ++i) centers.push_back(fp->grid.center(i));
+    for (const auto& row : fp->eta) density.insert(density.end(), row.begin(), row.end());
+    const auto cells = py::ssize_t(centers.size());
+    out["fp_energies"] = adopt(std::move(centers), {cells});
+    out["fp_density"] = adopt(std::move(density), {K - 1, cells});
+  }
+  return out;
 }
 
 /// What Shape and Shape3 have in common.
@@ -471,14 +637,31 @@ escaped (N,), seconds, collisions_per_second, threads, prediction (coefficients 
 The arrays own the C++ buffers: nothing is copied.)");
 
   m.def("trajectory", &scene_trajectory, "scene"_a, py::kw_only(), "collisions"_a = 100, "particle"_a = 0,
+        "dt"_a = 0.0, "time"_a = dynamics::never, "on_chunk"_a = py::none(), "chunk"_a = 65536,
+        "progress"_a = py::none(),
         R"(One particle of the scene's ensemble (its initial state is the one `run` gives it), bounce by
-bounce: a dict with times (K+1,), positions (K+1, d), velocities (K+1, d) just after each bounce,
-walls (K+1,) (the start has -1) and escaped.)");
+bounce, up to `collisions` bounces or the time `time`, whichever comes first: a dict with times
+(K+1,), positions (K+1, d), velocities (K+1, d) just after each bounce, walls (K+1,) (the start has
+-1), escaped, and samples: with dt > 0, the state at t0, t0 + dt, ... between the bounces along the
+flight's true path (times, positions, velocities, energies), else None.
+on_chunk: streams instead: on_chunk(rows) with a dict of the same keys for at most `chunk` rows at a
+time (the rows are not kept), and returns {collisions, escaped}.
+progress: called as progress(collisions, t) about every tenth of a second; Ctrl-C raises
+KeyboardInterrupt there.)");
   m.def("trajectory", &shape_trajectory<dynamics::FreeFlight, Shape>, "shape"_a, py::kw_only(), "collisions"_a = 100,
-        "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
+        "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0, "dt"_a = 0.0, "time"_a = dynamics::never,
+        "on_chunk"_a = py::none(), "chunk"_a = 65536, "progress"_a = py::none(),
         "A free trajectory in a shape from a uniform random start (for particle 0, the one `billiard plot --trajectory` "
         "draws).");
   m.def("trajectory", &shape_trajectory<dynamics3::FreeFlight3, Shape3>, "shape"_a, py::kw_only(),
-        "collisions"_a = 100, "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
+        "collisions"_a = 100, "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0, "dt"_a = 0.0,
+        "time"_a = dynamics::never, "on_chunk"_a = py::none(), "chunk"_a = 65536, "progress"_a = py::none(),
         "The same in a 3-D shape: positions and velocities are (K+1, 3).");
+  m.def("frames", &scene_frames, "scene"_a, py::kw_only(), "particles"_a, "frames"_a, "time"_a, "threads"_a = 0,
+        "progress"_a = py::none(),
+        R"(The first `particles` particles of the scene at `frames` uniform times from 0 to `time`, as
+`billiard animate` draws them: times (K,), positions (K, N, d), energies (K, N) (NaN after an escape),
+escaped (N,), and fp_energies (cells,), fp_density (K-1, cells): the Fokker-Planck density at each
+frame time after the first, or None where the theory does not cover the scene.  Ctrl-C raises
+KeyboardInterrupt between chunks of particles; progress(done, particles) is called after each.)");
 }

@@ -13,14 +13,15 @@ plus keyword arguments; see docs/python.md.
 """
 from . import _core
 from ._core import (InputError, Scene, Shape, Shape3, coefficients, fokker_planck_cdf, fokker_planck_eta,
-                    fokker_planck_moments, fokker_planck_numerical, info, sample_moments, trajectory)
+                    fokker_planck_moments, fokker_planck_numerical, info, sample_moments)
 from .plotting import plot_run, plot_shape, plot_trajectory
 from .results import RunResult, Summary, run
 from .scenes import load_scene, load_shape
+from .trajectories import Animation, animate, trajectory
 
 __version__ = _core.__version__
 
-__all__ = ["InputError", "RunResult", "Scene", "Shape", "Shape3", "Summary", "coefficients", "fokker_planck_cdf",
-           "fokker_planck_eta", "fokker_planck_moments", "fokker_planck_numerical", "info", "load_scene",
-           "load_shape", "plot_run", "plot_shape", "plot_trajectory", "run", "sample_moments", "trajectory",
-           "__version__"]
+__all__ = ["Animation", "InputError", "RunResult", "Scene", "Shape", "Shape3", "Summary", "animate", "coefficients",
+           "fokker_planck_cdf", "fokker_planck_eta", "fokker_planck_moments", "fokker_planck_numerical", "info",
+           "load_scene", "load_shape", "plot_run", "plot_shape", "plot_trajectory", "run", "sample_moments",
+           "trajectory", "__version__"]

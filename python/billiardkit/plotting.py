@@ -46,10 +46,11 @@ def _plot_shape3(shape, ax):
 
 
 def plot_trajectory(trajectory, shape=None, ax=None, **style):
-    """A trajectory (the dict of billiardkit.trajectory): its bounce points joined in order, over
-    the shape when given.  Straight segments: the path of a free particle; a driven particle's
-    curved flights between bounces are not drawn."""
-    x = trajectory["positions"]
+    """A trajectory (the dict of billiardkit.trajectory) over the shape when given: its dense
+    samples joined in order when it has them (trajectory(..., dt=...): a driven particle's curved
+    flights), else its bounce points (straight segments: the path of a free particle)."""
+    samples = trajectory.get("samples")
+    x = trajectory["positions"] if samples is None else samples["positions"]
     if x.shape[1] == 3:
         ax = _axes(ax, projection="3d") if shape is None else plot_shape(shape, ax)
         ax.plot(x[:, 0], x[:, 1], x[:, 2], **{"lw": 0.6, **style})

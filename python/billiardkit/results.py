@@ -98,15 +98,17 @@ class RunResult:
         return plot_run(self, ax=ax)
 
 
-def _progress_bar(total, enabled):
-    """A tqdm bar on a terminal when tqdm is installed; otherwise nothing."""
+def _progress_bar(total, enabled, unit="particle", desc="run"):
+    """A tqdm bar when enabled (None: on a terminal or in Jupyter) and tqdm is installed; otherwise nothing."""
+    if enabled is None:
+        enabled = sys.stderr.isatty() or "ipykernel" in sys.modules
     if not enabled:
         return None
     try:
         from tqdm.auto import tqdm
     except ImportError:
         return None
-    return tqdm(total=total, unit="particle", desc="run")
+    return tqdm(total=total, unit=unit, desc=desc)
 
 
 def run(scene, *, threads=0, verify=False, progress=None):
@@ -116,8 +118,6 @@ def run(scene, *, threads=0, verify=False, progress=None):
     threads: OpenMP threads (0: all cores).  verify: also check the midpoint of every free flight.
     progress: True for a tqdm bar, False for none, None for a bar when stderr is a terminal (or in
     Jupyter) and tqdm is installed.  Ctrl-C raises KeyboardInterrupt within about a second."""
-    if progress is None:
-        progress = sys.stderr.isatty() or "ipykernel" in sys.modules
     bar = _progress_bar(scene.particles, progress)
     if bar is None:
         return RunResult(scene, _core.run(scene, threads=threads, verify=verify))

@@ -8,7 +8,10 @@ PYTHONPATH=build/python BILLIARDS_BINARY=build/cli/billiard /usr/bin/python3 -m 
 import json
 import os
 import pathlib
+import signal
 import subprocess
+import sys
+import time
 
 import pytest
 
@@ -30,3 +33,17 @@ def billiard(*args, cwd=None):
 
 def billiard_json(*args):
     return json.loads(billiard(*args, "--json"))
+
+
+def interrupted(script):
+    """Runs `script` in a fresh Python; once it prints 'started', sends it SIGINT and returns its
+    exit status and the rest of its output (the script reports a KeyboardInterrupt itself)."""
+    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    assert proc.stdout.readline() == "started\n"
+    time.sleep(0.5)
+    proc.send_signal(signal.SIGINT)
+    try:
+        out, _ = proc.communicate(timeout=30)
+    finally:
+        proc.kill()
+    return proc.returncode, out

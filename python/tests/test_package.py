@@ -2,17 +2,15 @@
 from a Shape, numpy initial conditions, RunResult and its Summary, progress, Ctrl-C, plots."""
 import json
 import math
-import signal
 import subprocess
 import sys
-import time
 import types
 
 import numpy as np
 import pytest
 
 import billiardkit as bk
-from conftest import billiard
+from conftest import billiard, interrupted
 
 CLOVER_DRIVE = {"periodic": {"amplitude": ["10/sqrt(2)", "10/sqrt(2)"], "omega": "40*pi", "phase": 0}}
 
@@ -99,15 +97,7 @@ def test_ctrl_c_interrupts_a_long_run(source):
               "print('started', flush=True)\n"
               "try:\n    bk.run(scene, threads=1, progress=False)\n"
               "except KeyboardInterrupt:\n    print('interrupted', flush=True); sys.exit(3)\n")
-    proc = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
-    assert proc.stdout.readline() == "started\n"
-    time.sleep(0.5)
-    proc.send_signal(signal.SIGINT)
-    try:
-        out, _ = proc.communicate(timeout=30)
-    finally:
-        proc.kill()
-    assert proc.returncode == 3 and out == "interrupted\n"
+    assert interrupted(script) == (3, "interrupted\n")
 
 def test_plots_draw_the_objects(source):
     import matplotlib

@@ -34,6 +34,29 @@ struct RunOptions {
   bool verify_every_flight = false;
   /// Consecutive collisions at zero flight time before a particle is declared stuck.
   int max_zero_flights = 1000;
+  /// If set, asked by the calling thread every `StopCheck::period` rounds of collisions; false
+  /// stops every particle where it is, the results left incomplete (Ctrl-C in Python, where a
+  /// single particle may run for minutes).
+  std::function<bool()> keep_going;
+};
+
+/// A run's stop: the calling thread (OpenMP's thread 0) asks opt.keep_going() now and then, and
+/// once it says no, every thread sees `stopped()` at its next round.
+class StopCheck {
+ public:
+  static constexpr std::size_t period = 4096;
+  explicit StopCheck(const RunOptions& opt) : opt_(&opt) {}
+  bool stopped() {
+    if (!opt_->keep_going) return false;
+    if (omp_get_thread_num() == 0 && ++rounds_ % period == 0 && !opt_->keep_going())
+      stop_.store(true, std::memory_order_relaxed);
+    return stop_.load(std::memory_order_relaxed);
+  }
+
+ private:
+  const RunOptions* opt_;
+  std::atomic<bool> stop_{false};
+  std::size_t rounds_ = 0;  // thread 0's
 };
 
 template <class State>
@@ -169,6 +192,7 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
   constexpr int lanes = lockstep::lanes;
   const std::size_t m = opt.record_times.size();
   std::atomic<std::size_t> next{first}, done{0};
+  StopCheck stop(opt);
 #pragma omp parallel num_threads(threads)
   {
     std::optional<Run> runs[lanes];
@@ -196,7 +220,7 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
         while (runs[i] && runs[i]->done()) finish(i);  // (no record time after the start)
         if (runs[i]) states[n] = &runs[i]->state(), horizons[n] = runs[i]->horizon(), lane_of[n++] = i;
       }
-      if (n == 0) break;
+      if (n == 0 || stop.stopped()) break;
       lockstep_table.collisions(states, horizons, n, hits);
       for (int j = 0; j < n; ++j) {
         if (!runs[lane_of[j]]->advance_to(hits[j])) finish(lane_of[j]);
@@ -221,6 +245,7 @@ void run_particles(const TableT& table, const Flight& flight, const Initial& ini
   constexpr std::size_t together = interleaved_particles<Flight>;
   const std::size_t batches = (last - first + together - 1) / together;
   std::atomic<std::size_t> done{0};
+  StopCheck stop(opt);
 #pragma omp parallel for schedule(dynamic, 2) num_threads(threads)
   for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(batches); ++b) {
     const std::size_t lo = first + std::size_t(b) * together;
@@ -228,7 +253,7 @@ void run_particles(const TableT& table, const Flight& flight, const Initial& ini
     boost::container::static_vector<Trajectory<Flight, TableT>, together> runs;
     for (std::size_t i = lo; i < hi; ++i) runs.emplace_back(table, flight, initial(i), opt, &out.energies[i * m]);
     std::size_t active = runs.size();
-    while (active > 0) {
+    while (active > 0 && !stop.stopped()) {
       active = 0;
       for (auto& r : runs) active += r.step();
     }

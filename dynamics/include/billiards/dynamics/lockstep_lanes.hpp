@@ -10,15 +10,15 @@ namespace billiards::dynamics {
 namespace lockstep {
 
 /// Particles searched together, one per lane, and the most walls a table searched in lock step
-/// may have.  (Sixteen lanes, two AVX-512 registers whose operations interleave, measured −2
-/// to +6% against two groups of eight taking rounds in turn, faster at three of the four ω;
-/// two groups of sixteen, no faster: BENCHMARKS.md.)
+/// may have.  (Sixteen lanes fill two AVX-512 registers, whose independent operations
+/// interleave and hide each other's latency; more lanes only lengthen the rounds in which
+/// finished lanes wait for the rest.)
 inline constexpr int lanes = 16;
 inline constexpr int max_arcs = 8;
 
 /// A table's arcs, field by field (BasicArcWall's), padded to max_arcs.  (These structs are
-/// aligned to the kernel's registers: the same kernel ran 1.4× slower on a build where the
-/// flights it loads happened to straddle cache lines.)
+/// aligned to the kernel's registers, so that no load of a field straddles two cache lines,
+/// which would cost a second access on each of the kernel's loads.)
 struct alignas(64) Arcs {
   double cx[max_arcs], cy[max_arcs], r[max_arcs], sign[max_arcs], slack[max_arcs];
   double fx[max_arcs], fy[max_arcs], tx[max_arcs], ty[max_arcs];
