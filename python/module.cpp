@@ -291,11 +291,9 @@ py::dict trace(const Table& table, const Flight& flight, typename Flight::State 
       t.push_back(after.t);
       x.insert(x.end(), after.x.data(), after.x.data() + d);
       v.insert(v.end(), after.v.data(), after.v.data() + d);
-      // 2-D: the wall's position in the shape file (pieces counted loop by loop).
-      if constexpr (std::is_same_v<std::decay_t<decltype(hit.wall)>, dynamics::WallId>)
-        walls.push_back(table.piece_of(hit.wall));
-      else
-        walls.push_back(hit.wall);
+      // 2-D: the wall's position in the shape file (pieces counted loop by loop); 3-D: see
+      // Table3::piece_of.
+      walls.push_back(table.piece_of(hit.wall));
     });
   }
   const auto rows = py::ssize_t(t.size());
@@ -478,7 +476,7 @@ walls (K+1,) (the start has -1) and escaped.)");
         "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
         "A free trajectory in a shape from a uniform random start (for particle 0, the one `billiard plot --trajectory` "
         "draws).");
-  m.def("trajectory", &shape_trajectory<dynamics3::FreeFlight3, Shape3>, "shape"_a, py::kw_only(),
+  m.def("trajectory", &shape_trajectory<dynamics::FreeFlight3, Shape3>, "shape"_a, py::kw_only(),
         "collisions"_a = 100, "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0,
         "The same in a 3-D shape: positions and velocities are (K+1, 3).");
 }

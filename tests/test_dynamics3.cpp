@@ -3,7 +3,7 @@
 // no escapes, exact corner reflections, watertight triangle edges, grazing balls.
 #include "cli_helpers.hpp"
 
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
 #include <catch2/catch.hpp>
@@ -13,7 +13,7 @@
 #include <fstream>
 
 using namespace billiards;
-using namespace billiards::dynamics3;
+using namespace billiards::dynamics;
 using geometry3::Region3;
 
 namespace {
@@ -58,14 +58,15 @@ RunStats run(const Table3& table, int particles, double T) {
     State3 s = sample_microcanonical(table, 1.0, rng);
     long n = 0;
     while (true) {
-      const Hit3 hit = table.collision(s);
+      const Hit3 hit = collision(table, FreeFlight3{}, s);
       if (!hit.found()) {
         ++r.escapes;
         break;
       }
       if (n % 8 == 0 && is_outside(table.region(), s.x + 0.5 * (hit.t - s.t) * s.v)) ++r.outside;
       if (hit.t > T) break;
-      bounce(s, hit, 1.0);
+      bounce(FreeFlight3{}, s, hit);
+      restore_speed(s.v, 1.0);
       ++n;
     }
     r.max_speed_error = std::max(r.max_speed_error, std::abs(s.v.norm() - 1));
@@ -122,14 +123,15 @@ TEST_CASE("a flight into a corner of the cube comes back: v -> -v") {
     const Vec3 v0 = s.v;
     int bounces = 0;
     while (bounces < 3) {
-      const Hit3 hit = table.collision(s);
+      const Hit3 hit = collision(table, FreeFlight3{}, s);
       REQUIRE(hit.found());
       CHECK(hit.point.norm() < 1e-15);
-      bounce(s, hit, 1.0);
+      bounce(FreeFlight3{}, s, hit);
+      restore_speed(s.v, 1.0);
       ++bounces;
     }
     CHECK((s.v + v0).norm() < 1e-15);
-    const Hit3 next = table.collision(s);  // now flying straight back out of the corner
+    const Hit3 next = collision(table, FreeFlight3{}, s);  // now flying straight back out of the corner
     REQUIRE(next.found());
     CHECK(next.t > 0.5);
   }
@@ -151,7 +153,7 @@ TEST_CASE("triangle meshes are watertight: rays through edges and vertices alway
     // Targets on face diagonals (x = y on z = 0), on edges (y = 0, z = 0) and at a vertex.
     const Vec3 target = i % 3 == 0 ? Vec3(u, u, 0) : i % 3 == 1 ? Vec3(u, 0, 0) : Vec3(1, 1, 1);
     s.v = target - s.x;
-    const Hit3 hit = table.collision(s);
+    const Hit3 hit = collision(table, FreeFlight3{}, s);
     REQUIRE(hit.found());
     CHECK((hit.point - target).norm() < 1e-14);
     ++shots;
@@ -165,10 +167,11 @@ TEST_CASE("triangle meshes are watertight: rays through edges and vertices alway
     s.v = d / d.norm();
     int outside = 0;
     for (int k = 0; k < 10000; ++k) {
-      const Hit3 hit = table.collision(s);
+      const Hit3 hit = collision(table, FreeFlight3{}, s);
       REQUIRE(hit.found());
       outside += is_outside(shape.region, s.x + 0.5 * (hit.t - s.t) * s.v);
-      bounce(s, hit, 1.0);
+      bounce(FreeFlight3{}, s, hit);
+      restore_speed(s.v, 1.0);
     }
     CHECK(outside == 0);
   }
@@ -183,12 +186,12 @@ TEST_CASE("a ray tangent to a ball touches it without colliding; one ulp closer 
   CHECK(sphere_discriminant_sign_filtered(s.x, Vec3::Zero(), s.v, 0.25) < 0);
   s.x.z() = 0;
   CHECK(sphere_discriminant_sign_filtered(s.x, Vec3::Zero(), s.v, 0.25) == 0);  // decided by GMP
-  Hit3 hit = table.collision(s);
+  Hit3 hit = collision(table, FreeFlight3{}, s);
   REQUIRE(hit.found());
   CHECK(std::abs(hit.point.x() - 0.5) < 1e-15);  // flies past the ball to the far wall
   s.x.y() = std::nextafter(0.25, 0.0);
   CHECK(sphere_discriminant_sign_filtered(s.x, Vec3::Zero(), s.v, 0.25) > 0);
-  hit = table.collision(s);
+  hit = collision(table, FreeFlight3{}, s);
   REQUIRE(hit.found());
   CHECK(std::abs(hit.point.norm() - 0.25) < 1e-15);
   CHECK(hit.normal.y() < -0.99);  // the ball's outward normal (into the ball) at the graze
