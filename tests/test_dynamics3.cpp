@@ -196,3 +196,49 @@ TEST_CASE("a ray tangent to a ball touches it without colliding; one ulp closer 
   CHECK(std::abs(hit.point.norm() - 0.25) < 1e-15);
   CHECK(hit.normal.y() < -0.99);  // the ball's outward normal (into the ball) at the graze
 }
+
+// The 3-D primitives' queries, at the hits of free trajectories in every bundled table, against
+// the independent point-in-region test and the normals' own rate of turning: the hit point is
+// on the wall (|gap| at rounding) and in its box; the gap is < 0 a little inside along the
+// normal (where the region is) and > 0 a little outside; |curvature| is how fast the normal
+// turns along the wall, |n(p) − n(q)| / |p − q| for a nearby point q on the wall, and its sign
+// is + for the sphere the region is inside, − for a ball scatterer, 0 for flat walls.
+TEST_CASE("3-D walls: gap, normal, box and curvature at hit points agree with the region") {
+  for (const char* name : {"ball", "cube", "l-prism", "octahedron", "sinai3"}) {
+    INFO(name);
+    const auto shape = geometry3::load_shape3(shapes3 + name + ".yaml");
+    const Table3 table(shape.region);
+    const double h = 1e-6 * (table.hi() - table.lo()).maxCoeff();
+    dynamics::ParticleRng rng(5, 0);
+    State3 s = sample_microcanonical(table, 1.0, rng);
+    int checked = 0;
+    for (int k = 0; k < 200; ++k) {
+      const auto hit = collision(table, FreeFlight3{}, s);
+      REQUIRE(hit.found());
+      table.visit(hit.wall, [&](const auto& w) {
+        CHECK(std::abs(w.gap(hit.point)) < 1e-12);
+        CHECK((w.normal_at(hit.point) - hit.normal).norm() < 1e-15);
+        const auto [lo, hi] = w.box();
+        CHECK(((hit.point - lo).minCoeff() >= 0 && (hi - hit.point).minCoeff() >= 0));
+        const Vec3 in = hit.point - h * hit.normal, out = hit.point + h * hit.normal;
+        CHECK(w.gap(in) < 0);
+        CHECK(w.gap(out) > 0);
+        CHECK(table.contains(in));
+        CHECK(!table.contains(out));
+        // A point q on the wall near the hit: the hit point moved along the wall and back onto it.
+        const Vec3 t = hit.normal.unitOrthogonal();
+        Vec3 q = hit.point + h * t;
+        q -= w.gap(q) * w.normal_at(q);
+        const double turning = (w.normal_at(q) - w.normal_at(hit.point)).norm() / (q - hit.point).norm();
+        CHECK(std::abs(std::abs(w.curvature_at(hit.point)) - turning) < 1e-6 * (1 + turning));
+        const bool ball_hole = hit.wall.kind == wall_kind3::sphere && !table.spheres()[hit.wall.index].focusing;
+        const double kappa = w.curvature_at(hit.point);
+        CHECK((hit.wall.kind != wall_kind3::sphere ? kappa == 0 : ball_hole ? kappa < 0 : kappa > 0));
+        ++checked;
+      });
+      bounce(FreeFlight3{}, s, hit);
+      restore_speed(s.v, 1.0);
+    }
+    CHECK(checked == 200);
+  }
+}
