@@ -45,6 +45,7 @@ Real BasicFreeFlight<Real, Dim>::exit_time(const State& s, const BasicSegmentWal
 template <class Real, int Dim>
 Real BasicFreeFlight<Real, Dim>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const
   requires(Dim == 2) {
+  using std::abs;
   using std::max;
   using std::sqrt;
   // |f + v τ|² − r² = a τ² + 2 b τ + c with f = x − centre.
@@ -60,13 +61,19 @@ Real BasicFreeFlight<Real, Dim>::exit_time(const State& s, const BasicArcWall<Re
     if (b >= 0 && c >= 0) return c <= near ? s.t : Real(never);  // on the circle moving out: now
     Real D;
     if (c <= near) {
-      // Inside the circle, or on it to rounding (just reflected off it): b² − a c with c ≤ 0
-      // is a sum of two non-negative terms, so D ≥ b² and the far root is never before the
-      // end of the chord of a particle on the circle, −2b/a.  (The perpendicular form
-      // r²|v|² − (f × v)² cancels at grazing incidence: below an angle of 1e-8 it returned
-      // half that chord or less, the point where the particle moves along the tangent, and
-      // the particle then collided again at once, forever; found by the hard-cases suite.)
-      D = b * b - a * std::min(c, Real(0));
+      // On the circle to rounding (|c| ≤ near; just reflected off it): the chord of a particle
+      // exactly on it, −2b/a, which returns to the particle's own radius (the hit point is then
+      // projected onto the circle).  Solving for the circle itself from a start inside it by
+      // rounding δ would lengthen the chord by δ/(v·n) and tilt the velocity toward the normal
+      // at the next bounce, always the same way: a drift of the angle of incidence.  Only at
+      // grazing angles below the start's own rounding (b² < a|c|) is the chord set by that
+      // rounding, a|c| in either direction, so that the particle leaves its start.
+      // Inside: b² − a c with c < 0 is a sum of two non-negative terms.  Either way D ≥ b², so
+      // the far root is never before the end of the chord.  (The perpendicular form
+      // r²|v|² − (f × v)² cancels at grazing incidence: below an angle of 1e-8 it gives half
+      // that chord or less, the point where the particle moves along the tangent, and the
+      // particle would collide again at once, forever.)
+      D = c < -near ? Real(b * b - a * c) : max(Real(b * b), Real(a * abs(c)));
     } else {
       // Outside the circle (a non-convex region) and moving in: a miss or a graze is no exit.
       if (discriminant_sign(s.x, w.center, s.v, w.radius, w.radius2) <= 0) return never;
