@@ -9,7 +9,7 @@
 // Usage: bench_free3 [free collisions per shape, default 5e6] [driven, default a tenth]
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
@@ -23,7 +23,7 @@
 #include <cstdlib>
 
 using namespace billiards;
-using dynamics3::State3;
+using dynamics::State3;
 using geometry3::Vec3;
 
 namespace {
@@ -34,24 +34,26 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 /// Collisions per second of one thread running 64 particles one after the other; escapes.
 std::pair<double, long> toolkit3(const geometry3::Region3& region, double collisions) {
-  const dynamics3::Table3 table(region);
+  const dynamics::Table3 table(region);
+  const dynamics::FreeFlight3 flight;
   const int particles = 64;
   const double T = collisions / particles * geometry::mean_free_path(geometry3::measures_of(region));
   std::vector<State3> initial;
   for (int i = 0; i < particles; ++i) {
     dynamics::ParticleRng rng(1, i);
-    initial.push_back(dynamics3::sample_microcanonical(table, 1.0, rng));
+    initial.push_back(dynamics::sample_microcanonical(table, 1.0, rng));
   }
   long n = 0, escapes = 0;
   const auto start = std::chrono::steady_clock::now();
   for (State3 s : initial) {
     for (;;) {
-      const auto hit = table.collision(s, T);
+      const auto hit = table.collision(flight, s, T);
       if (!hit.found()) {
-        escapes += s.t < T && table.collision(s).t <= T;  // no wall at all before T
+        escapes += s.t < T && table.collision(flight, s).t <= T;  // no wall at all before T
         break;
       }
-      dynamics3::bounce(s, hit, 1.0);
+      dynamics::bounce(flight, s, hit);
+      dynamics::restore_speed(s.v, 1.0);
       ++n;
     }
   }
@@ -69,14 +71,14 @@ std::pair<double, long> cgal_aabb(const geometry3::TriangleMesh& mesh, const geo
   for (const auto& t : mesh.triangles)
     tris.emplace_back(point(mesh.vertices[t[0]]), point(mesh.vertices[t[1]]), point(mesh.vertices[t[2]]));
   Tree tree(tris.cbegin(), tris.cend());
-  const dynamics3::Table3 table(region);  // for sampling only
+  const dynamics::Table3 table(region);  // for sampling only
   const int particles = 64;
   const long per_particle = long(collisions / particles);
   long n = 0, escapes = 0;
   const auto start = std::chrono::steady_clock::now();
   for (int i = 0; i < particles; ++i) {
     dynamics::ParticleRng rng(1, i);
-    State3 s = dynamics3::sample_microcanonical(table, 1.0, rng);
+    State3 s = dynamics::sample_microcanonical(table, 1.0, rng);
     Triangles::const_iterator last = tris.cend();
     for (long k = 0; k < per_particle; ++k) {
       const K::Ray_3 ray(point(s.x), K::Vector_3(s.v.x(), s.v.y(), s.v.z()));
@@ -120,8 +122,8 @@ double sinai2_driven(double collisions) {
 }
 
 double driven3(const geometry3::Region3& region, double collisions) {
-  const dynamics3::Table3 table(region);
-  const dynamics3::PeriodicDriveFlight3 flight{Vec3(F, F, F) / std::sqrt(3.0), omega, 0};
+  const dynamics::Table3 table(region);
+  const dynamics::PeriodicDriveFlight3 flight{Vec3(F, F, F) / std::sqrt(3.0), omega, 0};
   return ensemble_rate(table, flight, geometry::mean_free_path(geometry3::measures_of(region)), collisions);
 }
 

@@ -15,7 +15,7 @@
 #include "kick_echo.hpp"
 
 #include "billiards/analysis.hpp"
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
 #include <fmt/core.h>
@@ -30,7 +30,7 @@
 #include <vector>
 
 using namespace billiards;
-using dynamics3::Vec3;
+using dynamics::Vec3;
 using namespace billiards::bench;
 
 namespace {
@@ -102,24 +102,24 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
-void particle_row(const dynamics3::Table3& table, const dynamics3::PeriodicDriveFlight3& flight, const Options& o,
+void particle_row(const dynamics::Table3& table, const dynamics::PeriodicDriveFlight3& flight, const Options& o,
                   double g1dt, std::size_t i, double* row, std::string* dump) {
   dynamics::ParticleRng rng(o.seed, i);
-  const auto s0 = dynamics3::sample_microcanonical(table, 1.0, rng);  // E0 = 1/2, m = 1
+  const auto s0 = dynamics::sample_microcanonical(table, 1.0, rng);  // E0 = 1/2, m = 1
   double dE_lab = 0;
   const auto kicks = driven_kicks(table, flight, s0, o.dt, dE_lab);
   if (dump)
     for (std::size_t k = 0; k < kicks.size(); ++k) {
       const auto& q = kicks[k];
-      *dump += fmt::format("{},{},{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
-                           i, k, q.t, q.wall, q.n[0], q.n[1], q.n[2], q.x[0], q.x[1], q.x[2], q.w[0], q.w[1], q.w[2],
+      *dump += fmt::format("{},{},{:.17g},{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g}\n",
+                           i, k, q.t, q.wall.kind, q.wall.index, q.n[0], q.n[1], q.n[2], q.x[0], q.x[1], q.x[2], q.w[0], q.w[1], q.w[2],
                            q.a, q.kappa);
     }
   const double w2 = flight.omega * flight.omega;
   double sum = 0;
   for (std::size_t k = 0; k < kicks.size(); ++k) {
     const auto& q = kicks[k];
-    const bool ball = is_ball(table, q.wall);
+    const bool ball = is_ball(q.wall);
     const double th = 2 * q.a * q.a * q.Fn * q.Fn / w2;
     sum += q.kappa;
     row[sum_k2] += q.kappa * q.kappa;
@@ -131,7 +131,7 @@ void particle_row(const dynamics3::Table3& table, const dynamics3::PeriodicDrive
     if (k + 1 < kicks.size()) {
       const auto& r = kicks[k + 1];
       const double c = 2 * q.kappa * r.kappa;
-      if (ball || is_ball(table, r.wall)) row[cross_ball] += c;
+      if (ball || is_ball(r.wall)) row[cross_ball] += c;
       else if (q.n.dot(r.n) < -0.5) row[cross_opp] += c;
       else row[cross_adj] += c;
       if (flight.omega * (r.t - q.t) < 2 * geometry::pi) row[cross_short] += c;
@@ -143,7 +143,7 @@ void particle_row(const dynamics3::Table3& table, const dynamics3::PeriodicDrive
   });
   std::array<std::vector<int>, 3> chain;  // per axis, its face hits since the last ball hit
   for (int k = 0; k < int(kicks.size()); ++k) {
-    if (is_ball(table, kicks[k].wall)) {
+    if (is_ball(kicks[k].wall)) {
       for (auto& c : chain) c.clear();
       continue;
     }
@@ -174,11 +174,11 @@ void particle_row(const dynamics3::Table3& table, const dynamics3::PeriodicDrive
 }
 
 /// (d): positions uniform in the region and velocities isotropic, from the sampler itself.
-void isotropy_check(const dynamics3::Table3& table, std::size_t n, double R) {
+void isotropy_check(const dynamics::Table3& table, std::size_t n, double R) {
   std::array<double, 6> m{};  // ⟨v_i²⟩ (i = x, y, z), ⟨v_x v_y⟩, ⟨|x|⟩, fraction with |x| < R
   for (std::size_t i = 0; i < n; ++i) {
     dynamics::ParticleRng rng(7, i);
-    const auto s = dynamics3::sample_microcanonical(table, 1.0, rng);
+    const auto s = dynamics::sample_microcanonical(table, 1.0, rng);
     for (int k = 0; k < 3; ++k) m[k] += s.v[k] * s.v[k];
     m[3] += s.v[0] * s.v[1];
     m[4] += std::abs(s.x[0]);
@@ -197,7 +197,7 @@ void isotropy_check(const dynamics3::Table3& table, std::size_t n, double R) {
 /// The frozen (undriven) paths' excess (E|Z(ω)|² − E Σa²(F·n)²)/E Σa²(F·n)² at each ω: the
 /// relative size of the cross terms that the theory's independent kicks leave out, to first
 /// order in F, for every ω from the same paths.
-void frozen_spectrum(const dynamics3::Table3& table, const Vec3& F, const Options& o) {
+void frozen_spectrum(const dynamics::Table3& table, const Vec3& F, const Options& o) {
   const std::size_t m = o.spectrum.size();
   std::vector<double> rows(o.n * (m + 1), 0.0);  // per particle: W, then |Z_j|² − W
   std::vector<std::thread> pool;
@@ -205,7 +205,7 @@ void frozen_spectrum(const dynamics3::Table3& table, const Vec3& F, const Option
     pool.emplace_back([&, t] {
       for (std::size_t i = std::size_t(t); i < o.n; i += std::size_t(o.threads)) {
         dynamics::ParticleRng rng(o.seed, i);
-        const auto kicks = free_kicks(table, F, dynamics3::sample_microcanonical(table, 1.0, rng), o.dt);
+        const auto kicks = free_kicks(table, F, dynamics::sample_microcanonical(table, 1.0, rng), o.dt);
         double* row = &rows[i * (m + 1)];
         for (const auto& q : kicks) row[0] += q.a * q.a * q.Fn * q.Fn;
         for (std::size_t j = 0; j < m; ++j) {
@@ -234,12 +234,12 @@ void frozen_spectrum(const dynamics3::Table3& table, const Vec3& F, const Option
 int main(int argc, char** argv) {
   const Options o = parse(argc, argv);
   const auto shape = geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/sinai3.yaml", {{"R", fmt::format("{}", o.R)}});
-  const dynamics3::Table3 table(shape.region);
+  const dynamics::Table3 table(shape.region);
   if (o.isotropy) isotropy_check(table, o.isotropy, o.R);
   const double omega = o.omega_pi * geometry::pi;
   const Vec3 F = o.F * Vec3(1, 1, 1) / std::sqrt(3.0);
   if (!o.spectrum.empty()) return frozen_spectrum(table, F, o), 0;
-  const dynamics3::PeriodicDriveFlight3 flight{F, omega, 0};
+  const dynamics::PeriodicDriveFlight3 flight{F, omega, 0};
   analysis::Drive drive;
   drive.F = F;
   drive.omega = omega;
@@ -260,7 +260,7 @@ int main(int argc, char** argv) {
   for (auto& th : pool) th.join();
   if (!o.dump.empty()) {
     std::FILE* f = std::fopen(o.dump.c_str(), "w");
-    std::fputs("particle,k,t,wall,nx,ny,nz,x,y,z,wx,wy,wz,a,kappa\n", f);
+    std::fputs("particle,k,t,wall_kind,wall,nx,ny,nz,x,y,z,wx,wy,wz,a,kappa\n", f);
     for (const auto& d : dumps) std::fputs(d.c_str(), f);
     std::fclose(f);
   }

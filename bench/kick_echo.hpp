@@ -3,7 +3,7 @@
 // Var ΔE"): shared by bench_sinai3_kicks and tests/test_driven3.cpp.  Mass 1.
 #pragma once
 
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/table3.hpp"
 
 #include <array>
 #include <cmath>
@@ -11,19 +11,17 @@
 
 namespace billiards::bench {
 
-using dynamics3::Vec3;
+using dynamics::Vec3;
 
 /// One collision in the oscillating frame w = v − (F/mω) sin θ, where w is constant in flight:
 /// the kick κ = ½|w'|² − ½|w|² = 2(a + b)b, with a = w·n and b = (F·n/ω) sin θ.
 struct Kick {
   double t, a, Fn, kappa;
-  int wall;
+  dynamics::WallId wall;
   Vec3 n, x, w;  // normal, hit point, oscillating-frame velocity before the hit
 };
 
-inline bool is_ball(const dynamics3::Table3& table, int wall) {
-  return wall >= int(table.planes().size() + table.triangles().size());
-}
+inline bool is_ball(const dynamics::WallId& wall) { return wall.kind == dynamics::wall_kind3::sphere; }
 
 /// Echo triples: hits p, m, q on the faces normal to one axis α (so p and q on the same face,
 /// m on the opposite one) with no ball hit between p and q.  The flights p → m and m → q then
@@ -34,11 +32,11 @@ inline bool is_ball(const dynamics3::Table3& table, int wall) {
 /// E[κ_p κ_q] = −2 w_α² F_α² J₂(K)/(m ω²), with J₂ the Bessel function, which the theory's
 /// independent kicks leave out.  Calls f(p, m, q, prediction of 2E[κ_p κ_q]) for each triple.
 template <class Visit>
-void echoes(const dynamics3::Table3& table, const std::vector<Kick>& kicks, const Vec3& accel, double omega,
+void echoes(const dynamics::Table3& table, const std::vector<Kick>& kicks, const Vec3& accel, double omega,
             Visit f) {
   std::array<int, 3> last{-1, -1, -1}, before{-1, -1, -1};
   for (int k = 0; k < int(kicks.size()); ++k) {
-    if (is_ball(table, kicks[k].wall)) {
+    if (is_ball(kicks[k].wall)) {
       last = before = {-1, -1, -1};
       continue;
     }
@@ -55,8 +53,8 @@ void echoes(const dynamics3::Table3& table, const std::vector<Kick>& kicks, cons
 }
 
 /// The driven path of one particle: its kicks and its lab-frame ΔE.
-inline std::vector<Kick> driven_kicks(const dynamics3::Table3& table, const dynamics3::PeriodicDriveFlight3& flight,
-                               const dynamics3::State3& s0, double dt, double& dE) {
+inline std::vector<Kick> driven_kicks(const dynamics::Table3& table, const dynamics::PeriodicDriveFlight3& flight,
+                               const dynamics::State3& s0, double dt, double& dE) {
   std::vector<Kick> kicks;
   auto s = flight.start(s0);
   const Vec3 amp_v = flight.accel / flight.omega;
@@ -65,7 +63,7 @@ inline std::vector<Kick> driven_kicks(const dynamics3::Table3& table, const dyna
     if (!hit.found()) break;
     const auto before = flight.advance(s, hit.t);
     const Vec3 u = amp_v * before.sin_phase, w = before.v - u;
-    dynamics3::bounce(flight, s, hit);
+    dynamics::bounce(flight, s, hit);
     const Vec3 w_after = s.v - u;
     kicks.push_back({hit.t, w.dot(hit.normal), flight.accel.dot(hit.normal),
                      0.5 * (w_after.squaredNorm() - w.squaredNorm()), hit.wall, hit.normal, hit.point, w});
@@ -75,14 +73,15 @@ inline std::vector<Kick> driven_kicks(const dynamics3::Table3& table, const dyna
 }
 
 /// The undriven path from the same start: hit times, normal speeds and normals.
-inline std::vector<Kick> free_kicks(const dynamics3::Table3& table, const Vec3& accel, dynamics3::State3 s, double dt) {
+inline std::vector<Kick> free_kicks(const dynamics::Table3& table, const Vec3& accel, dynamics::State3 s, double dt) {
   std::vector<Kick> kicks;
   const double v2 = s.v.squaredNorm();
   while (true) {
-    const auto hit = table.collision(s, dt);
+    const auto hit = table.collision(dynamics::FreeFlight3{}, s, dt);
     if (!hit.found()) break;
     kicks.push_back({hit.t, s.v.dot(hit.normal), accel.dot(hit.normal), 0, hit.wall, hit.normal, hit.point, s.v});
-    dynamics3::bounce(s, hit, v2);
+    dynamics::bounce(dynamics::FreeFlight3{}, s, hit);
+    dynamics::restore_speed(s.v, v2);
   }
   return kicks;
 }

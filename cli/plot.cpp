@@ -98,7 +98,7 @@ nlohmann::json shape3_data(const std::string& path, const Overrides& set, int co
   }
   for (const Ball& b : region.holes) sphere(b, false);
 
-  const auto trajectory = collisions > 0 ? free_trajectory<dynamics3::FreeFlight3>(region, collisions, seed)
+  const auto trajectory = collisions > 0 ? free_trajectory<dynamics::FreeFlight3>(region, collisions, seed)
                                           : nlohmann::json::array();
   const auto m = measures_of(region);
   std::string title = fmt::format("{}:  V = {:.6g},  S = {:.6g},  mean free path = {:.6g}", region.name, m.volume,

@@ -95,7 +95,7 @@ class Checkpoint {
 /// Refuses a run whose arrays (or threads' stacks) would not fit in memory, before allocating.
 void require_memory(const Scene& scene, int threads) {
   const double n = double(scene.particles), m = double(scene.record_times.size());
-  const double per_particle = m * sizeof(double) + sizeof(dynamics::ParticleLog) + sizeof(dynamics3::State3);
+  const double per_particle = m * sizeof(double) + sizeof(dynamics::ParticleLog) + sizeof(dynamics::State3);
   const double table = 3000 * m * 24;  // fokker-planck.csv, built in memory
   rlimit stack{}, space{};
   getrlimit(RLIMIT_STACK, &stack);

@@ -396,10 +396,7 @@ py::dict trace(const Table& table, const Flight& flight, typename Flight::State 
     py::gil_scoped_release unlocked;
     const auto on_bounce = [&](const auto& hit, const auto& after) {
       // 2-D: the wall's position in the shape file (pieces counted loop by loop).
-      if constexpr (std::is_same_v<std::decay_t<decltype(hit.wall)>, dynamics::WallId>)
-        rows.add_bounce(after, table.piece_of(hit.wall));
-      else
-        rows.add_bounce(after, hit.wall);
+      rows.add_bounce(after, table.piece_of(hit.wall));
       flush(false);
       heartbeat(rows.t.size(), after.t);
     };
@@ -653,7 +650,7 @@ KeyboardInterrupt there.)");
         "on_chunk"_a = py::none(), "chunk"_a = 65536, "progress"_a = py::none(),
         "A free trajectory in a shape from a uniform random start (for particle 0, the one `billiard plot --trajectory` "
         "draws).");
-  m.def("trajectory", &shape_trajectory<dynamics3::FreeFlight3, Shape3>, "shape"_a, py::kw_only(),
+  m.def("trajectory", &shape_trajectory<dynamics::FreeFlight3, Shape3>, "shape"_a, py::kw_only(),
         "collisions"_a = 100, "seed"_a = 1, "particle"_a = 0, "speed"_a = 1.0, "dt"_a = 0.0,
         "time"_a = dynamics::never, "on_chunk"_a = py::none(), "chunk"_a = 65536, "progress"_a = py::none(),
         "The same in a 3-D shape: positions and velocities are (K+1, 3).");

@@ -15,7 +15,7 @@ namespace golden {
 struct Row {
   std::string label;
   int particle = 0, k = 0;
-  long wall = -1;  // 2-D: the wall's line in the shape file; 3-D: the table's wall index
+  long wall = -1;  // 2-D: the wall's line in the shape file; 3-D: Table3::piece_of
   double t = 0, x = 0, y = 0, z = 0;
 };
 
@@ -103,7 +103,7 @@ inline Run run(const Case& c, bool perturbed = false) {
         if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
         Row r{c.label, i, k, -1, hit.t, hit.point[0], hit.point[1], 0};
         if constexpr (is_3d<Flight>) {
-          r.wall = hit.wall;
+          r.wall = table.piece_of(hit.wall);
           r.z = hit.point[2];
         } else {
           r.wall = table.source_of(hit.wall).line;

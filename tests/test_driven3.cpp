@@ -3,7 +3,7 @@
 // against the analysis layer's g1, g2 in d = 3.
 #include "billiards/analysis.hpp"
 #include "billiards/dynamics/ensemble.hpp"
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 #include "kick_echo.hpp"
 
@@ -12,9 +12,9 @@
 #include <cmath>
 
 using namespace billiards;
-using dynamics3::DrivenState3;
-using dynamics3::PeriodicDriveFlight3;
-using dynamics3::Vec3;
+using dynamics::DrivenState3;
+using dynamics::PeriodicDriveFlight3;
+using dynamics::Vec3;
 
 namespace {
 
@@ -55,15 +55,15 @@ double first_crossing(G g, double h, double t_max) {
 }  // namespace
 
 TEST_CASE("3-D driven exit times through a plane and a sphere equal a brute-force scan") {
-  const dynamics3::PlaneWall plane{Vec3(0, 0, 1), 1.0, 1e-15};  // z ≤ 1
-  const dynamics3::SphereWall ball{Vec3::Zero(), 1.0, 1.0, true, 1e-15};
+  const dynamics::PlaneWall plane{Vec3(0, 0, 1), 1.0, 1e-15};  // z ≤ 1
+  const dynamics::SphereWall ball{Vec3::Zero(), 1.0, 1.0, true, 1e-15};
   dynamics::ParticleRng rng(5, 0);
   int compared = 0;
   for (const double omega : {2 * pi, 40 * pi, 640 * pi}) {
     for (int k = 0; k < 12; ++k) {
       const Vec3 F = 10 * Vec3(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5).normalized();
       const PeriodicDriveFlight3 flight{F, omega, 2 * pi * rng.uniform()};
-      dynamics3::State3 s0;
+      dynamics::State3 s0;
       s0.x = 0.5 * Vec3(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5);
       s0.v = Vec3(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5).normalized();
       const double h = std::min(2 * pi / omega / 128, 2e-3);
@@ -74,7 +74,7 @@ TEST_CASE("3-D driven exit times through a plane and a sphere equal a brute-forc
       const double got_plane = flight.exit_time(s, plane, 3), got_ball = flight.exit_time(s, ball, 3);
       for (const auto& [got, expected] : {std::pair{got_plane, t_plane}, std::pair{got_ball, t_ball}}) {
         if (expected < 0) {
-          CHECK(got == dynamics3::never);
+          CHECK(got == dynamics::never);
         } else {
           CHECK(std::abs(got - expected) < 1e-10);
           ++compared;
@@ -87,20 +87,21 @@ TEST_CASE("3-D driven exit times through a plane and a sphere equal a brute-forc
 
 TEST_CASE("3-D: zero drive is the free billiard, collision for collision") {
   const auto shape = sinai3();
-  const dynamics3::Table3 table(shape.region);
+  const dynamics::Table3 table(shape.region);
   const PeriodicDriveFlight3 flight{Vec3::Zero(), 40 * pi, 0};
   dynamics::ParticleRng rng(9, 0);
-  dynamics3::State3 free = dynamics3::sample_microcanonical(table, 1.0, rng);
+  dynamics::State3 free = dynamics::sample_microcanonical(table, 1.0, rng);
   DrivenState3 driven = flight.start(free);
   for (int k = 0; k < 12; ++k) {  // few enough that chaos has not amplified the roots' rounding
-    const auto a = table.collision(free);
+    const auto a = table.collision(dynamics::FreeFlight3{}, free);
     const auto b = table.collision(flight, driven);
     REQUIRE(a.found());
     REQUIRE(b.found());
     CHECK(a.wall == b.wall);
     CHECK((a.point - b.point).norm() < 1e-9);
-    dynamics3::bounce(free, a, 1.0);
-    dynamics3::bounce(flight, driven, b);
+    dynamics::bounce(dynamics::FreeFlight3{}, free, a);
+    dynamics::restore_speed(free.v, 1.0);
+    dynamics::bounce(flight, driven, b);
   }
 }
 
@@ -110,21 +111,22 @@ TEST_CASE("3-D: the windows searched in time order find the hit the wall-by-wall
   // (checked against brute force above) must find the same first hit along trajectories.
   for (const char* name : {"sinai3", "ball", "cube", "octahedron"}) {
     const auto shape = geometry3::load_shape3(std::string(BILLIARDS_SOURCE_DIR "/shapes/3d/") + name + ".yaml");
-    const dynamics3::Table3 table(shape.region);
+    const dynamics::Table3 table(shape.region);
     for (const double omega : {10 * pi, 40 * pi, 320 * pi, 2560 * pi}) {
       const PeriodicDriveFlight3 flight{10 * Vec3(1, 1, 1) / std::sqrt(3.0), omega, 0};
       dynamics::ParticleRng rng(13, std::uint64_t(omega));
-      DrivenState3 s = flight.start(dynamics3::sample_microcanonical(table, 1.0, rng));
-      const int np = int(table.planes().size());
+      DrivenState3 s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
       int mismatches = 0;
       for (int k = 0; k < 300; ++k) {
         const double t_end = k % 2 ? s.t + 20 : dynamics::never;
         double t_wall = t_end;
-        int wall = -1;
-        for (int w = 0; w < np; ++w)
-          if (const double t = flight.exit_time(s, table.planes()[w], t_wall); t < t_wall) t_wall = t, wall = w;
+        dynamics::WallId wall;
+        for (int w = 0; w < int(table.planes().size()); ++w)
+          if (const double t = flight.exit_time(s, table.planes()[w], t_wall); t < t_wall)
+            t_wall = t, wall = {dynamics::wall_kind3::plane, w};
         for (int w = 0; w < int(table.spheres().size()); ++w)
-          if (const double t = flight.exit_time(s, table.spheres()[w], t_wall); t < t_wall) t_wall = t, wall = np + w;
+          if (const double t = flight.exit_time(s, table.spheres()[w], t_wall); t < t_wall)
+            t_wall = t, wall = {dynamics::wall_kind3::sphere, w};
         const auto hit = table.collision(flight, s, t_end);
         const bool same = std::abs(hit.t - t_wall) <= 1e-12 * (1 + std::abs(t_wall)) || hit.t == t_wall;
         if (!same || (hit.wall != wall && std::abs(hit.t - t_wall) > 1e-12)) {
@@ -136,7 +138,7 @@ TEST_CASE("3-D: the windows searched in time order find the hit the wall-by-wall
           CHECK(t_end != dynamics::never);
           continue;
         }
-        dynamics3::bounce(flight, s, hit);
+        dynamics::bounce(flight, s, hit);
       }
       CHECK(mismatches == 0);
     }
@@ -148,7 +150,7 @@ TEST_CASE("3-D: the windows searched in time order find the hit the wall-by-wall
 // faces (next test; docs/3d.md), +3.1% at this F.
 TEST_CASE("3-D Sinai at omega = 320 pi: <dE> and Var(dE) match g1 dt and g2 dt (d = 3)") {
   const auto shape = sinai3();
-  const dynamics3::Table3 table(shape.region);
+  const dynamics::Table3 table(shape.region);
   const double F = 10, omega = 320 * pi, E0 = 0.5, dt = 10;
   const PeriodicDriveFlight3 flight{Vec3(F, F, F) / std::sqrt(3.0), omega, 0};
   const std::size_t n = 8000;
@@ -156,11 +158,11 @@ TEST_CASE("3-D Sinai at omega = 320 pi: <dE> and Var(dE) match g1 dt and g2 dt (
   std::size_t collisions = 0;
   for (std::size_t i = 0; i < n; ++i) {
     dynamics::ParticleRng rng(1, i);
-    auto s = flight.start(dynamics3::sample_microcanonical(table, std::sqrt(2 * E0), rng));
+    auto s = flight.start(dynamics::sample_microcanonical(table, std::sqrt(2 * E0), rng));
     while (true) {
       const auto hit = table.collision(flight, s, dt);
       if (!hit.found()) break;  // no wall before dt
-      dynamics3::bounce(flight, s, hit);
+      dynamics::bounce(flight, s, hit);
       ++collisions;
     }
     const auto end = flight.advance(s, dt);
@@ -196,14 +198,14 @@ TEST_CASE("3-D Sinai at omega = 320 pi: <dE> and Var(dE) match g1 dt and g2 dt (
 // the kicks (collision times not shifted by them) it would be zero.
 TEST_CASE("3-D Sinai: kicks three hits apart between parallel faces correlate as J2(K) predicts") {
   const auto shape = sinai3();
-  const dynamics3::Table3 table(shape.region);
+  const dynamics::Table3 table(shape.region);
   const double F = 2, omega = 320 * pi, E0 = 0.5, dt = 10;
   const PeriodicDriveFlight3 flight{Vec3(F, F, F) / std::sqrt(3.0), omega, 0};
   const std::size_t n = 20000;
   std::vector<double> dE(n), echo_gap(n), echo(n);
   for (std::size_t i = 0; i < n; ++i) {
     dynamics::ParticleRng rng(1, i);
-    const auto kicks = bench::driven_kicks(table, flight, dynamics3::sample_microcanonical(table, 1.0, rng), dt, dE[i]);
+    const auto kicks = bench::driven_kicks(table, flight, dynamics::sample_microcanonical(table, 1.0, rng), dt, dE[i]);
     bench::echoes(table, kicks, flight.accel, omega, [&](int p, int, int q, double predicted) {
       const double measured = 2 * kicks[p].kappa * kicks[q].kappa;
       echo[i] += measured;
@@ -237,14 +239,14 @@ bool outside_mesh(const geometry3::Region3& region, const Vec3& x) {
 }
 
 /// The earliest exit over every wall of the table, without the BVH.
-dynamics3::Hit3 brute_force_collision(const dynamics3::Table3& table, const PeriodicDriveFlight3& flight,
+dynamics::Hit3 brute_force_collision(const dynamics::Table3& table, const PeriodicDriveFlight3& flight,
                                       const DrivenState3& s, double t_end) {
-  dynamics3::Hit3 best;
+  dynamics::Hit3 best;
   best.t = t_end;
   const auto& tris = table.triangles();
   for (int i = 0; i < int(tris.size()); ++i) {
     const double t = flight.exit_time(s, tris[i], t_end);  // the full horizon: no help from the others
-    if (t < best.t) best.t = t, best.wall = int(table.planes().size()) + i;
+    if (t < best.t) best.t = t, best.wall = {dynamics::wall_kind3::triangle, i};
   }
   return best;
 }
@@ -257,7 +259,7 @@ dynamics3::Hit3 brute_force_collision(const dynamics3::Table3& table, const Peri
 TEST_CASE("3-D driven collisions in meshes equal a brute-force scan over all triangles, and never leak") {
   for (const char* name : {"l-prism", "bumpy-100k"}) {
     const auto shape = geometry3::load_shape3(std::string(BILLIARDS_SOURCE_DIR "/shapes/3d/") + name + ".yaml");
-    const dynamics3::Table3 table(shape.region);
+    const dynamics::Table3 table(shape.region);
     const bool big = table.triangles().size() > 1000;
     dynamics::ParticleRng rng(21, 0);
     int compared = 0, sampled = 0;
@@ -265,17 +267,17 @@ TEST_CASE("3-D driven collisions in meshes equal a brute-force scan over all tri
       for (int k = 0; k < (big ? 4 : 8); ++k) {
         const Vec3 F = 10 * Vec3(rng.uniform() - 0.5, rng.uniform() - 0.5, rng.uniform() - 0.5).normalized();
         const PeriodicDriveFlight3 flight{F, omega, 2 * pi * rng.uniform()};
-        auto s = flight.start(dynamics3::sample_microcanonical(table, 1.0, rng));
+        auto s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
         for (int c = 0; c < 4; ++c) {
           INFO(name << " omega " << omega << " case " << k << " collision " << c);
           const auto hit = table.collision(flight, s);
-          const auto brute = brute_force_collision(table, flight, s, dynamics3::never);
+          const auto brute = brute_force_collision(table, flight, s, dynamics::never);
           REQUIRE(hit.found());
           REQUIRE(brute.found());
           CHECK(std::abs(hit.t - brute.t) < 1e-9);
           // Equal walls, or a tie at a shared edge (both triangles crossed at the same time).
           if (hit.wall != brute.wall)
-            CHECK(std::abs(flight.exit_time(s, table.triangles()[hit.wall], dynamics3::never) - brute.t) < 1e-9);
+            CHECK(std::abs(flight.exit_time(s, table.triangles()[hit.wall.index], dynamics::never) - brute.t) < 1e-9);
           ++compared;
           if (c == 0 && !big) {
             // Sample the flight (100 points per drive period, at least 2000): inside until the
@@ -288,7 +290,7 @@ TEST_CASE("3-D driven collisions in meshes equal a brute-force scan over all tri
             CHECK(mesh.locator->distance(hit.point) < 1e-9);
             ++sampled;
           }
-          dynamics3::bounce(flight, s, hit);
+          dynamics::bounce(flight, s, hit);
         }
       }
     }
@@ -304,7 +306,7 @@ TEST_CASE("3-D driven collisions in meshes equal a brute-force scan over all tri
 TEST_CASE("3-D driven ensembles in meshes: no escapes, collision rate v/lambda, <dE> and Var(dE) at g1, g2") {
   for (const auto& [name, n] : {std::pair{"l-prism", 6000}, std::pair{"bumpy-100k", 3000}}) {
     const auto shape = geometry3::load_shape3(std::string(BILLIARDS_SOURCE_DIR "/shapes/3d/") + name + ".yaml");
-    const dynamics3::Table3 table(shape.region);
+    const dynamics::Table3 table(shape.region);
     const double F = 10, omega = 320 * pi, E0 = 0.5;
     const Vec3 Fv = F * Vec3(1, 2, 3).normalized();
     const PeriodicDriveFlight3 flight{Fv, omega, 0};

@@ -3,7 +3,7 @@
 // no escapes, exact corner reflections, watertight triangle edges, grazing balls.
 #include "cli_helpers.hpp"
 
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
 
 #include <catch2/catch.hpp>
@@ -13,7 +13,7 @@
 #include <fstream>
 
 using namespace billiards;
-using namespace billiards::dynamics3;
+using namespace billiards::dynamics;
 using geometry3::Region3;
 
 namespace {
@@ -58,14 +58,15 @@ RunStats run(const Table3& table, int particles, double T) {
     State3 s = sample_microcanonical(table, 1.0, rng);
     long n = 0;
     while (true) {
-      const Hit3 hit = table.collision(s);
+      const Hit3 hit = collision(table, FreeFlight3{}, s);
       if (!hit.found()) {
         ++r.escapes;
         break;
       }
       if (n % 8 == 0 && is_outside(table.region(), s.x + 0.5 * (hit.t - s.t) * s.v)) ++r.outside;
       if (hit.t > T) break;
-      bounce(s, hit, 1.0);
+      bounce(FreeFlight3{}, s, hit);
+      restore_speed(s.v, 1.0);
       ++n;
     }
     r.max_speed_error = std::max(r.max_speed_error, std::abs(s.v.norm() - 1));
@@ -122,14 +123,15 @@ TEST_CASE("a flight into a corner of the cube comes back: v -> -v") {
     const Vec3 v0 = s.v;
     int bounces = 0;
     while (bounces < 3) {
-      const Hit3 hit = table.collision(s);
+      const Hit3 hit = collision(table, FreeFlight3{}, s);
       REQUIRE(hit.found());
       CHECK(hit.point.norm() < 1e-15);
-      bounce(s, hit, 1.0);
+      bounce(FreeFlight3{}, s, hit);
+      restore_speed(s.v, 1.0);
       ++bounces;
     }
     CHECK((s.v + v0).norm() < 1e-15);
-    const Hit3 next = table.collision(s);  // now flying straight back out of the corner
+    const Hit3 next = collision(table, FreeFlight3{}, s);  // now flying straight back out of the corner
     REQUIRE(next.found());
     CHECK(next.t > 0.5);
   }
@@ -151,7 +153,7 @@ TEST_CASE("triangle meshes are watertight: rays through edges and vertices alway
     // Targets on face diagonals (x = y on z = 0), on edges (y = 0, z = 0) and at a vertex.
     const Vec3 target = i % 3 == 0 ? Vec3(u, u, 0) : i % 3 == 1 ? Vec3(u, 0, 0) : Vec3(1, 1, 1);
     s.v = target - s.x;
-    const Hit3 hit = table.collision(s);
+    const Hit3 hit = collision(table, FreeFlight3{}, s);
     REQUIRE(hit.found());
     CHECK((hit.point - target).norm() < 1e-14);
     ++shots;
@@ -165,10 +167,11 @@ TEST_CASE("triangle meshes are watertight: rays through edges and vertices alway
     s.v = d / d.norm();
     int outside = 0;
     for (int k = 0; k < 10000; ++k) {
-      const Hit3 hit = table.collision(s);
+      const Hit3 hit = collision(table, FreeFlight3{}, s);
       REQUIRE(hit.found());
       outside += is_outside(shape.region, s.x + 0.5 * (hit.t - s.t) * s.v);
-      bounce(s, hit, 1.0);
+      bounce(FreeFlight3{}, s, hit);
+      restore_speed(s.v, 1.0);
     }
     CHECK(outside == 0);
   }
@@ -183,13 +186,59 @@ TEST_CASE("a ray tangent to a ball touches it without colliding; one ulp closer 
   CHECK(sphere_discriminant_sign_filtered(s.x, Vec3::Zero(), s.v, 0.25) < 0);
   s.x.z() = 0;
   CHECK(sphere_discriminant_sign_filtered(s.x, Vec3::Zero(), s.v, 0.25) == 0);  // decided by GMP
-  Hit3 hit = table.collision(s);
+  Hit3 hit = collision(table, FreeFlight3{}, s);
   REQUIRE(hit.found());
   CHECK(std::abs(hit.point.x() - 0.5) < 1e-15);  // flies past the ball to the far wall
   s.x.y() = std::nextafter(0.25, 0.0);
   CHECK(sphere_discriminant_sign_filtered(s.x, Vec3::Zero(), s.v, 0.25) > 0);
-  hit = table.collision(s);
+  hit = collision(table, FreeFlight3{}, s);
   REQUIRE(hit.found());
   CHECK(std::abs(hit.point.norm() - 0.25) < 1e-15);
   CHECK(hit.normal.y() < -0.99);  // the ball's outward normal (into the ball) at the graze
+}
+
+// The 3-D primitives' queries, at the hits of free trajectories in every bundled table, against
+// the independent point-in-region test and the normals' own rate of turning: the hit point is
+// on the wall (|gap| at rounding) and in its box; the gap is < 0 a little inside along the
+// normal (where the region is) and > 0 a little outside; |curvature| is how fast the normal
+// turns along the wall, |n(p) − n(q)| / |p − q| for a nearby point q on the wall, and its sign
+// is + for the sphere the region is inside, − for a ball scatterer, 0 for flat walls.
+TEST_CASE("3-D walls: gap, normal, box and curvature at hit points agree with the region") {
+  for (const char* name : {"ball", "cube", "l-prism", "octahedron", "sinai3"}) {
+    INFO(name);
+    const auto shape = geometry3::load_shape3(shapes3 + name + ".yaml");
+    const Table3 table(shape.region);
+    const double h = 1e-6 * (table.hi() - table.lo()).maxCoeff();
+    dynamics::ParticleRng rng(5, 0);
+    State3 s = sample_microcanonical(table, 1.0, rng);
+    int checked = 0;
+    for (int k = 0; k < 200; ++k) {
+      const auto hit = collision(table, FreeFlight3{}, s);
+      REQUIRE(hit.found());
+      table.visit(hit.wall, [&](const auto& w) {
+        CHECK(std::abs(w.gap(hit.point)) < 1e-12);
+        CHECK((w.normal_at(hit.point) - hit.normal).norm() < 1e-15);
+        const auto [lo, hi] = w.box();
+        CHECK(((hit.point - lo).minCoeff() >= 0 && (hi - hit.point).minCoeff() >= 0));
+        const Vec3 in = hit.point - h * hit.normal, out = hit.point + h * hit.normal;
+        CHECK(w.gap(in) < 0);
+        CHECK(w.gap(out) > 0);
+        CHECK(table.contains(in));
+        CHECK(!table.contains(out));
+        // A point q on the wall near the hit: the hit point moved along the wall and back onto it.
+        const Vec3 t = hit.normal.unitOrthogonal();
+        Vec3 q = hit.point + h * t;
+        q -= w.gap(q) * w.normal_at(q);
+        const double turning = (w.normal_at(q) - w.normal_at(hit.point)).norm() / (q - hit.point).norm();
+        CHECK(std::abs(std::abs(w.curvature_at(hit.point)) - turning) < 1e-6 * (1 + turning));
+        const bool ball_hole = hit.wall.kind == wall_kind3::sphere && !table.spheres()[hit.wall.index].focusing;
+        const double kappa = w.curvature_at(hit.point);
+        CHECK((hit.wall.kind != wall_kind3::sphere ? kappa == 0 : ball_hole ? kappa < 0 : kappa > 0));
+        ++checked;
+      });
+      bounce(FreeFlight3{}, s, hit);
+      restore_speed(s.v, 1.0);
+    }
+    CHECK(checked == 200);
+  }
 }

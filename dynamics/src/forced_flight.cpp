@@ -46,11 +46,11 @@ bool may_meet_span(const BasicArcWall<Real>& w, const Vec2T<Real>& p, const Vec2
 
 // ---- Periodic drive ---------------------------------------------------------------------
 
-template <class Real>
-auto BasicPeriodicDriveFlight<Real>::start(const BasicState<Real>& s) const -> State {
+template <class Real, int D>
+auto BasicPeriodicDriveFlight<Real, D>::start(const BasicState<Real, D>& s) const -> State {
   using P = PhaseOf<Real>;
   State d;
-  static_cast<BasicState<Real>&>(d) = s;
+  static_cast<BasicState<Real, D>&>(d) = s;
   d.set_phase(advance_phase(P(phase0), omega, s.t));
   return d;
 }
@@ -58,8 +58,8 @@ auto BasicPeriodicDriveFlight<Real>::start(const BasicState<Real>& s) const -> S
 namespace {
 
 /// The state's phase at τ after s, from `near` when known.
-template <class Real>
-void set_phase_at(BasicDrivenState<Real>& r, const BasicDrivenState<Real>& s, const Real& omega, const Real& tau,
+template <class Real, int D>
+void set_phase_at(BasicDrivenState<Real, D>& r, const BasicDrivenState<Real, D>& s, const Real& omega, const Real& tau,
                   const scan::PhaseSample<Real>& near) {
   const auto theta = advance_phase(s.phase, omega, tau);
   if (near.known() && near.near(theta))
@@ -70,8 +70,8 @@ void set_phase_at(BasicDrivenState<Real>& r, const BasicDrivenState<Real>& s, co
 
 }  // namespace
 
-template <class Real>
-auto BasicPeriodicDriveFlight<Real>::advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near) const
+template <class Real, int D>
+auto BasicPeriodicDriveFlight<Real, D>::advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near) const
     -> State {
   const Real tau = t - s.t;
   State r = s;
@@ -315,14 +315,103 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicArcWal
   return tau == never ? Real(never) : Real(s.t + tau);
 }
 
+// ---- Periodic drive in 3-D: planes, mesh triangles, spheres --------------------------------
+
+namespace {
+
+using Quiver3 = scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
+const auto no_window_passed = [](double, double) { return false; };  // no spans to cull by
+const auto everywhere = [](const Vec3&) { return true; };
+
+/// The distance of q's oscillation segment from the plane through a with normal n (the
+/// certified scan's clearance for a creeping flight).
+auto plane_clearance(const Quiver3& q, const Vec3& n, const Vec3& a) {
+  return [&q, n, a](double tau) {
+    const auto [p, r] = q.sweep(tau);
+    return scan::segment_plane_distance(p, r, n, a);
+  };
+}
+
+}  // namespace
+
+template <class Real, int D>
+double BasicPeriodicDriveFlight<Real, D>::exit_time(const State& s, const PlaneWall& w, double t_end) const
+  requires(D == 3) {
+  // A face of a convex polyhedron has no span: the first plane crossed outward is the exit.
+  const Quiver3 q(*this, s);
+  const Vec3 a = w.normal * w.offset;
+  const double tau = scan::with_creep(q, [&](auto clearance) {
+    return scan::driven_exit_through_plane(q, w.normal, a, w.slack, t_end - s.t, no_window_passed, everywhere,
+                                           clearance);
+  }, plane_clearance(q, w.normal, a));
+  return tau == never ? never : s.t + tau;
+}
+
+template <class Real, int D>
+double BasicPeriodicDriveFlight<Real, D>::exit_time(const State& s, const TriangleWall& w, double t_end) const
+  requires(D == 3) {
+  const Quiver3 q(*this, s);
+  // The particle stays within δ of the guiding segment, along which each edge's signed
+  // distance is linear: when both ends are beyond the same edge by more than δ and the slack,
+  // no point of the window is within the widened span.
+  auto passes = [&](double tau, double end) {
+    const Vec3 a = q.guide(tau), b = q.guide(end);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 pa = a - w.p[k], pb = b - w.p[k];
+      const double da = w.edge_normal[k].dot(pa), db = w.edge_normal[k].dot(pb);
+      const double rounding = 8 * scan::eps<double> * (pa.cwiseAbs().sum() + pb.cwiseAbs().sum());
+      const double margin = w.slack + q.delta + rounding;
+      if (da > margin && db > margin) return true;
+    }
+    return false;
+  };
+  auto in_span = [&](const Vec3& x) { return w.within_span(x); };
+  // (The triangle's plane: a lower bound of the distance from the triangle.)
+  const double tau = scan::with_creep(q, [&](auto clearance) {
+    return scan::driven_exit_through_plane(q, w.normal, w.p[0], w.slack, t_end - s.t, passes, in_span, clearance);
+  }, plane_clearance(q, w.normal, w.p[0]));
+  return tau == never ? never : s.t + tau;
+}
+
+template <class Real, int D>
+double BasicPeriodicDriveFlight<Real, D>::exit_time(const State& s, const SphereWall& w, double t_end) const
+  requires(D == 3) {
+  const Quiver3 q(*this, s);
+  auto clearance = [&](double tau) {
+    const auto [a, b] = q.sweep(tau);
+    return scan::segment_sphere_distance(a, b, w.center, w.radius);
+  };
+  const double tau = scan::with_creep(q, [&](auto clearance) {
+    return scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, t_end - s.t,
+                                            no_window_passed, everywhere, clearance);
+  }, clearance);
+  return tau == never ? never : s.t + tau;
+}
+
 template struct DrivenScan<BasicPeriodicDriveFlight<double>>;
 template struct DrivenScan<BasicPeriodicDriveFlight<long double>>;
 template struct DrivenScan<BasicPeriodicDriveFlight<Reference>>;
 template struct DrivenScan<BasicQuiveringWallFlight<double>>;
 template struct DrivenScan<BasicQuiveringWallFlight<long double>>;
-template struct BasicPeriodicDriveFlight<double>;
-template struct BasicPeriodicDriveFlight<long double>;
-template struct BasicPeriodicDriveFlight<Reference>;
+// (Member by member: a whole-class instantiation would also instantiate the members of the
+// other dimension.)
+template PeriodicDriveFlight::State PeriodicDriveFlight::start(const BasicState<double>&) const;
+template PeriodicDriveFlight::State PeriodicDriveFlight::advance(const State&, const double&,
+                                                                 const scan::PhaseSample<double>&) const;
+template BasicPeriodicDriveFlight<long double>::State BasicPeriodicDriveFlight<long double>::start(
+    const BasicState<long double>&) const;
+template BasicPeriodicDriveFlight<long double>::State BasicPeriodicDriveFlight<long double>::advance(
+    const State&, const long double&, const scan::PhaseSample<long double>&) const;
+template BasicPeriodicDriveFlight<Reference>::State BasicPeriodicDriveFlight<Reference>::start(
+    const BasicState<Reference>&) const;
+template BasicPeriodicDriveFlight<Reference>::State BasicPeriodicDriveFlight<Reference>::advance(
+    const State&, const Reference&, const scan::PhaseSample<Reference>&) const;
+template PeriodicDriveFlight3::State PeriodicDriveFlight3::start(const State3&) const;
+template PeriodicDriveFlight3::State PeriodicDriveFlight3::advance(const State&, const double&,
+                                                                   const scan::PhaseSample<double>&) const;
+template double PeriodicDriveFlight3::exit_time(const State&, const PlaneWall&, double) const;
+template double PeriodicDriveFlight3::exit_time(const State&, const TriangleWall&, double) const;
+template double PeriodicDriveFlight3::exit_time(const State&, const SphereWall&, double) const;
 template struct BasicQuiveringWallFlight<double>;
 template struct BasicQuiveringWallFlight<long double>;
 template struct BasicConstantForceFlight<double>;

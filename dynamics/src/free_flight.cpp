@@ -27,8 +27,9 @@ int discriminant_sign(const Vec2T<Real>& x, const Vec2T<Real>& c, const Vec2T<Re
 
 }  // namespace
 
-template <class Real>
-Real BasicFreeFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
+template <class Real, int Dim>
+Real BasicFreeFlight<Real, Dim>::exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const
+  requires(Dim == 2) {
   const Real rate = w.normal.dot(s.v);  // d/dt of the distance beyond the wall's line
   if (!(rate > 0)) return never;        // parallel or moving inward: no exit here
   const Real beyond = w.normal.dot(s.x - w.a);
@@ -41,8 +42,9 @@ Real BasicFreeFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Rea
   return t;
 }
 
-template <class Real>
-Real BasicFreeFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
+template <class Real, int Dim>
+Real BasicFreeFlight<Real, Dim>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const
+  requires(Dim == 2) {
   using std::abs;
   using std::max;
   using std::sqrt;
@@ -99,8 +101,16 @@ Real BasicFreeFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& 
   return t;
 }
 
-template struct BasicFreeFlight<double>;
-template struct BasicFreeFlight<long double>;
-template struct BasicFreeFlight<Reference>;
+// (Member by member: a whole-class instantiation would also instantiate the 3-D members.)
+template double FreeFlight::exit_time(const State&, const BasicSegmentWall<double>&, const double&) const;
+template double FreeFlight::exit_time(const State&, const BasicArcWall<double>&, const double&) const;
+template long double BasicFreeFlight<long double>::exit_time(const State&, const BasicSegmentWall<long double>&,
+                                                              const long double&) const;
+template long double BasicFreeFlight<long double>::exit_time(const State&, const BasicArcWall<long double>&,
+                                                              const long double&) const;
+template Reference BasicFreeFlight<Reference>::exit_time(const State&, const BasicSegmentWall<Reference>&,
+                                                          const Reference&) const;
+template Reference BasicFreeFlight<Reference>::exit_time(const State&, const BasicArcWall<Reference>&,
+                                                          const Reference&) const;
 
 }  // namespace billiards::dynamics

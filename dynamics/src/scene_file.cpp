@@ -1,7 +1,7 @@
 #include "billiards/dynamics/scene.hpp"
 
 #include "billiards/dynamics/table.hpp"
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry/measures.hpp"
 #include "billiards/geometry/yaml_reader.hpp"
 
@@ -294,8 +294,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
     if (!csv.IsScalar()) r.fail(csv, "'csv' is the path of an initial-condition file");
     scene.initial_csv = (fs::path(base_dir) / csv.Scalar()).lexically_normal().string();
     if (scene.dimension == 3) {
-      const dynamics3::Table3 table(scene.shape3.region);
-      scene.initial_states3 = read_initial_csv<dynamics3::State3>(scene.initial_csv,
+      const Table3 table(scene.shape3.region);
+      scene.initial_states3 = read_initial_csv<State3>(scene.initial_csv,
                                                                   [&](const auto& x) { return table.contains(x); });
       scene.particles = scene.initial_states3.size();
     } else {

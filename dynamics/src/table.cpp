@@ -15,16 +15,17 @@ namespace billiards::dynamics {
 template <class Real>
 BasicTable<Real>::BasicTable(const geometry::Region2& region) {
   // Each piece becomes a wall of the kind built from it, keeping its source line.
+  int count = 0;
   for (const geometry::Loop* loop : region.loops()) {
     for (std::size_t i = 0; i < loop->pieces.size(); ++i) {
       std::visit([&](const auto& piece) {
-        for_each_kind([&]<class W>(const std::vector<W>&, int kind) {
+        this->for_each_kind([&]<class W>(const std::vector<W>&, int kind) {
           if constexpr (std::is_constructible_v<W, decltype(piece)>) {
-            auto& walls = std::get<std::vector<W>>(walls_);
+            auto& walls = this->template mutable_walls<W>();
             const WallId id{kind, int(walls.size())};
             walls.emplace_back(piece);
             sources_[kind].push_back(loop->where[i]);
-            pieces_[kind].push_back(int(count_++));
+            pieces_[kind].push_back(count++);
             boxes_.emplace_back(id, geometry::bounding_box(loop->pieces[i]));
           }
         });

@@ -76,7 +76,7 @@ Hit grid_collision(const Table& table, const FreeFlight& flight, const State& s,
 /// hit point, and `bounce` starts from it instead of advancing the flight a second time (for
 /// a driven flight, a reduction of the phase and a sine and a cosine per collision).
 template <class Flight>
-struct FlightHit : BasicHit<typename Flight::Scalar> {
+struct FlightHit : BasicHit<typename Flight::Scalar, Flight::State::dimension> {
   typename Flight::State state;
   /// Has the search that found the hit also certified the flight's position half way to it
   /// inside the region (Table::certainly_contains, as Trajectory's every-flight check asks)?
@@ -120,13 +120,13 @@ const typename Flight::State& state_at(const Flight&, const typename Flight::Sta
 }
 template <class Flight>
 typename Flight::State state_at(const Flight& flight, const typename Flight::State& s,
-                                const BasicHit<typename Flight::Scalar>& hit) {
+                                const BasicHit<typename Flight::Scalar, Flight::State::dimension>& hit) {
   return flight.advance(s, hit.t);
 }
 
 /// Specular reflection v' = v − 2(v·n)n.
-template <class Real>
-inline Vec2T<Real> reflect(const Vec2T<Real>& v, const Vec2T<Real>& n) {
+template <class Real, int D>
+inline VecN<Real, D> reflect(const VecN<Real, D>& v, const VecN<Real, D>& n) {
   return v - 2 * v.dot(n) * n;
 }
 
@@ -151,7 +151,7 @@ void bounce(const Flight& flight, typename Flight::State& s, const HitT& hit) {
 /// Follows the particle from `s` through its next `collisions` bounces (fewer if it meets no
 /// wall: an escape), calling visit(hit, state) with the state just after each bounce;
 /// energy-conserving flights restore the speed after every bounce.  Returns the bounces made.
-/// Any table (2-D or dynamics3's): `collision` and `bounce` are found by argument lookup.
+/// Any table (2-D or 3-D): `collision` and `bounce` are found by overload resolution.
 template <class TableT, class Flight, class Visit>
 std::size_t evolve(const TableT& table, const Flight& flight, typename Flight::State s, std::size_t collisions,
                    Visit&& visit) {

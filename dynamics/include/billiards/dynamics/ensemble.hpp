@@ -73,8 +73,8 @@ double energy_of(const Flight& flight, const typename Flight::State& s, double m
 
 /// One particle's run, a collision at a time: records its energy at each record time into
 /// `energies` (NaN after an escape).  Flights are searched up to the last record time only.
-/// `TableT` is a 2-D table (table.hpp) or a 3-D one (dynamics3/table3.hpp): the verbs
-/// `collision`, `bounce` and `sample_microcanonical` are found for either by argument lookup.
+/// `TableT` is a 2-D table (table.hpp) or a 3-D one (table3.hpp): the verbs `collision`,
+/// `bounce` and `sample_microcanonical` are found for either by overload resolution.
 template <class Flight, class TableT = dynamics::Table>
 class Trajectory {
  public:

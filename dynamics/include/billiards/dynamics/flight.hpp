@@ -2,12 +2,13 @@
 //
 // A flight model M is a small value type with
 //   using Scalar = ...;                     // double, or long double / MPFR for references
-//   using State = ...;                      // derives from dynamics::BasicState<Scalar>
+//   using State = ...;                      // derives from dynamics::BasicState<Scalar, D>
 //   State start(const dynamics::State& s) const;              // a particle's initial state
 //   State advance(const State& s, Scalar t) const;            // state at time t ≥ s.t
 //   Scalar exit_time(const State& s, const BasicSegmentWall<Scalar>& w, Scalar t_end) const;
 //   Scalar exit_time(const State& s, const BasicArcWall<Scalar>& w, Scalar t_end) const;
 //   static constexpr bool conserves_energy;
+// and, in 3-D (D = 3), exit_time through each of walls3.hpp's primitives instead.
 // A flight under a uniform acceleration `accel` (or none) is covariant under affine maps:
 // `elliptic_exit_time` below gives its exit times through elliptic arcs from those through
 // circular arcs.
@@ -24,20 +25,31 @@
 
 #include "billiards/dynamics/state.hpp"
 #include "billiards/dynamics/walls.hpp"
+#include "billiards/dynamics/walls3.hpp"
 
 #include <limits>
 #include <type_traits>
 
 namespace billiards::dynamics {
 
-inline constexpr double never = std::numeric_limits<double>::infinity();
+/// A 3-D straight flight's exit times from one state: the sheared ray of the watertight
+/// triangle test (walls3.hpp) is computed once per flight, not once per triangle (`collision`
+/// asks the flight for it with `scan_from(s)`).
+struct StraightScan3 {
+  const State3& s;
+  Ray ray;
+  explicit StraightScan3(const State3& st) : s(st), ray(st.x, st.v) {}
+  double exit_time(const PlaneWall& w, double t_end) const { return straight_exit_time(s, w, t_end); }
+  double exit_time(const TriangleWall& w, double t_end) const { return straight_exit_time(s, ray, w, t_end); }
+  double exit_time(const SphereWall& w, double t_end) const { return straight_exit_time(s, w, t_end); }
+};
 
 /// Straight flight at constant velocity (no force), in any scalar type (free_flight.cpp
-/// instantiates double, long double and precision.hpp's Reference).
-template <class Real>
+/// instantiates double, long double and precision.hpp's Reference) and dimension (3-D: double).
+template <class Real, int D = 2>
 struct BasicFreeFlight {
   using Scalar = Real;
-  using State = BasicState<Real>;
+  using State = BasicState<Real, D>;
   static constexpr bool conserves_energy = true;
 
   State start(const State& s) const { return s; }
@@ -47,16 +59,22 @@ struct BasicFreeFlight {
     r.t = t;
     return r;
   }
-  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
-  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  StraightScan3 scan_from(const State& s) const requires(D == 3) { return StraightScan3(s); }
+  template <class Wall>
+  double exit_time(const State& s, const Wall& w, double t_end) const requires(D == 3) {
+    return scan_from(s).exit_time(w, t_end);
+  }
 };
 using FreeFlight = BasicFreeFlight<double>;
+using FreeFlight3 = BasicFreeFlight<double, 3>;
 
 /// Is the flight model's law covariant under affine maps x ↦ L (x − c)?  Straight flights are,
 /// and so are flights under a uniform acceleration (`accel`, mapped to L accel); a flight in a
 /// position-dependent field is not.
 template <class Flight>
-concept affine_covariant = std::is_base_of_v<BasicFreeFlight<typename Flight::Scalar>, Flight> ||
+concept affine_covariant = std::is_base_of_v<BasicFreeFlight<typename Flight::Scalar, Flight::State::dimension>, Flight> ||
                            requires(Flight f) { f.accel = f.accel; };
 
 /// The flight seen through the wall's map u = L (x − c) (time is not mapped).
@@ -82,8 +100,9 @@ typename Flight::Scalar elliptic_exit_time(const Flight& flight, const typename 
 }
 
 /// Does the flight model move in straight lines?  (Their search costs the same with or without
-/// a horizon; dynamics3 adds its free flight.)
+/// a horizon.)
 template <class Flight>
-inline constexpr bool is_straight = std::is_same_v<Flight, BasicFreeFlight<typename Flight::Scalar>>;
+inline constexpr bool is_straight =
+    std::is_same_v<Flight, BasicFreeFlight<typename Flight::Scalar, Flight::State::dimension>>;
 
 }  // namespace billiards::dynamics

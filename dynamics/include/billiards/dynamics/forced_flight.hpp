@@ -26,8 +26,8 @@
 namespace billiards::dynamics {
 
 /// State under a periodic drive: the state plus the drive's phase.
-template <class Real>
-struct BasicDrivenState : BasicState<Real> {
+template <class Real, int D = 2>
+struct BasicDrivenState : BasicState<Real, D> {
   PhaseOf<Real> phase = 0;
   /// sin and cos of `phase`, from which every exit-time search starts: computed once per
   /// flight instead of once per wall.  Set them with the phase (set_phase).
@@ -43,6 +43,7 @@ struct BasicDrivenState : BasicState<Real> {
   }
 };
 using DrivenState = BasicDrivenState<double>;
+using DrivenState3 = BasicDrivenState<double, 3>;
 
 /// The exit-time searches of one driven flight (lab or quivering walls) from one state: the
 /// guiding line and the bounds that every wall's search starts from are computed once per
@@ -63,37 +64,44 @@ struct DrivenScan {
   FlightHit<Flight> first_hit(const BasicTable<Real>& table, const Real& t_end) const;
 };
 
-/// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0).
-template <class Real>
+/// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0), in 2-D or (in
+/// double) 3-D: Appendix B holds in any dimension.
+template <class Real, int D = 2>
 struct BasicPeriodicDriveFlight {
   using Scalar = Real;
-  using State = BasicDrivenState<Real>;
+  using State = BasicDrivenState<Real, D>;
   static constexpr bool conserves_energy = false;
 
-  Vec2T<Real> accel;  // F / m
-  Real omega;         // ω
-  Real phase0 = 0;    // the drive's phase at t = 0
+  VecN<Real, D> accel;  // F / m
+  Real omega;           // ω
+  Real phase0 = 0;      // the drive's phase at t = 0
 
-  State start(const BasicState<Real>& s) const;
+  State start(const BasicState<Real, D>& s) const;
   /// Appendix B: v(t) = v_s + (F/mω)[sin θ(t) − sin θ_s],
   /// x(t) = x_s + [v_s − (F/mω) sin θ_s](t − t_s) − (F/mω²)[cos θ(t) − cos θ_s];
   /// sin θ(t) and cos θ(t) from `near` when it is known (a sample of a root search).
   State advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near = {}) const;
-  DrivenScan<BasicPeriodicDriveFlight> scan_from(const State& s) const { return {{*this, s}}; }
+  DrivenScan<BasicPeriodicDriveFlight> scan_from(const State& s) const requires(D == 2) { return {{*this, s}}; }
   /// The oscillation segment guide ± F/(mω²) that holds the position at time t of the flight
   /// from s (no sine or cosine: the ensemble's every-flight check looks it up first).
-  std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const {
+  std::pair<VecN<Real, D>, VecN<Real, D>> sweep(const State& s, const Real& t) const {
     return scan::oscillation_segment(s, scan::guiding_velocity(*this, s), drive_amplitudes(accel, omega).first,
                                      Real(t - s.t));
   }
-  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2) {
     return scan_from(s).exit_time(w, t_end);
   }
-  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2) {
     return scan_from(s).exit_time(w, t_end);
   }
+  double exit_time(const State& s, const PlaneWall& w, double t_end) const requires(D == 3);
+  /// Through the triangle's plane within its span (widened by its slack, as for straight
+  /// flights, so that neighbours overlap at their shared edge and nothing slips between them).
+  double exit_time(const State& s, const TriangleWall& w, double t_end) const requires(D == 3);
+  double exit_time(const State& s, const SphereWall& w, double t_end) const requires(D == 3);
 };
 using PeriodicDriveFlight = BasicPeriodicDriveFlight<double>;
+using PeriodicDriveFlight3 = BasicPeriodicDriveFlight<double, 3>;
 
 /// The same drive seen from the frame y = x + d(t), d(t) = F cos(ω t + phase)/(mω²), the
 /// paper's "quivering walls" (section 6): there ÿ = ẍ − F cos θ/m = 0, so the particle flies

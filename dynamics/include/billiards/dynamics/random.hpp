@@ -13,8 +13,6 @@
 
 namespace billiards::dynamics {
 
-template <class Real>
-class BasicTable;
 using Table = BasicTable<double>;
 
 inline std::uint64_t splitmix64(std::uint64_t x) {

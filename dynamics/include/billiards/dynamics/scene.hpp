@@ -3,7 +3,6 @@
 #pragma once
 
 #include "billiards/dynamics/state.hpp"
-#include "billiards/dynamics3/walls3.hpp"
 #include "billiards/geometry/coordinate_function.hpp"
 #include "billiards/geometry/expression.hpp"
 #include "billiards/geometry/measures.hpp"
@@ -52,7 +51,7 @@ struct Scene {
   /// Microcanonical ensemble at `energy`, unless the initial states were read from a CSV file.
   double energy = 0;
   std::vector<State> initial_states;                // 2-D
-  std::vector<dynamics3::State3> initial_states3;   // 3-D
+  std::vector<State3> initial_states3;               // 3-D
   std::string initial_csv;
   Force force;
   std::optional<Potential> potential;

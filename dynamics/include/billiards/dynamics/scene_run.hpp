@@ -8,8 +8,7 @@
 #include "billiards/dynamics/field_flight.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/scene.hpp"
-#include "billiards/dynamics3/driven3.hpp"
-#include "billiards/dynamics3/table3.hpp"
+#include "billiards/dynamics/table3.hpp"
 
 #include <cmath>
 #include <type_traits>
@@ -21,10 +20,10 @@ namespace billiards::dynamics {
 template <class Run>
 auto with_flight(const Scene& scene, Run&& run) {
   if (scene.dimension == 3) {  // (the scene file refuses forces that 3-D has no flight for)
-    const dynamics3::Vec3 accel = scene.force.amplitude / scene.mass;
+    const Vec3 accel = scene.force.amplitude / scene.mass;
     if (scene.force.kind == Force::Kind::periodic)
-      return run(dynamics3::PeriodicDriveFlight3{accel, scene.force.omega, scene.force.phase});
-    return run(dynamics3::FreeFlight3{});
+      return run(PeriodicDriveFlight3{accel, scene.force.omega, scene.force.phase});
+    return run(FreeFlight3{});
   }
   // Closed forms where they exist; the integrator only for a position-dependent drive or a
   // potential.
@@ -45,11 +44,11 @@ auto with_flight(const Scene& scene, Run&& run) {
 
 /// Is the flight model a 3-D one?
 template <class Flight>
-constexpr bool is_3d = std::is_base_of_v<dynamics3::State3, typename Flight::State>;
+constexpr bool is_3d = Flight::State::dimension == 3;
 
 /// The table of the flight's dimension.
 template <class Flight>
-using TableFor = std::conditional_t<is_3d<Flight>, dynamics3::Table3, Table>;
+using TableFor = BasicTable<double, Flight::State::dimension>;
 
 /// The scene's table for `Flight`.
 template <class Flight>

@@ -1,13 +1,13 @@
-// The billiard table as the dynamics sees it: the region's walls prepared for fast queries,
-// kept by kind in contiguous storage, a uniform grid over them when there are many, and an
-// independent point-in-region test.  Every algorithm over the walls goes through
-// `for_each_kind` (all walls, kind by kind: one loop per kind, no dispatch per wall) or
-// `visit` (one wall by its WallId), so a new wall kind is one more entry in `WallKinds`.
+// The 2-D billiard table as the dynamics sees it: the region's walls prepared for fast
+// queries, kept by kind in contiguous storage (WallSet: `for_each_kind`, `any_kind`, `visit`),
+// a uniform grid over them when there are many, and an independent point-in-region test.  A
+// new wall kind is one more entry in `WallKinds`.
 // The walls' scalar type is a parameter (table.cpp instantiates double, long double and
 // precision.hpp's Reference); the grid and the bounding box are in double.
 #pragma once
 
 #include "billiards/dynamics/state.hpp"
+#include "billiards/dynamics/wall_set.hpp"
 #include "billiards/dynamics/walls.hpp"
 #include "billiards/geometry/pieces.hpp"
 
@@ -28,13 +28,21 @@ inline constexpr int segment = 0, arc = 1, elliptic_arc = 2;
 }
 
 template <class Real>
-class BasicTable {
+class BasicTable<Real, 2> : public WallSet<WallKinds<Real>> {
+  using Base = WallSet<WallKinds<Real>>;
+
  public:
   using V = Vec2T<Real>;
-  using Kinds = WallKinds<Real>;
-  static constexpr std::size_t kind_count = std::tuple_size_v<Kinds>;
+  using typename Base::Kinds;
+  using Base::kind_count;
   template <std::size_t k>
-  using Kind = std::tuple_element_t<k, Kinds>;
+  using Kind = typename Base::template Kind<k>;
+  using Base::walls;
+  using Base::for_each_kind;
+  using Base::visit;
+  using Base::any_kind;
+  using Base::wall_count;
+  using Base::wall_ids;
   static_assert(std::is_same_v<Kind<wall_kind::segment>, BasicSegmentWall<Real>> &&
                 std::is_same_v<Kind<wall_kind::arc>, BasicArcWall<Real>> &&
                 std::is_same_v<Kind<wall_kind::elliptic_arc>, BasicEllipticArcWall<Real>>);
@@ -43,40 +51,9 @@ class BasicTable {
 
   explicit BasicTable(const geometry::Region2& region);
 
-  /// The walls of one kind.
-  template <class W>
-  const std::vector<W>& walls() const { return std::get<std::vector<W>>(walls_); }
-  const std::vector<BasicSegmentWall<Real>>& segments() const { return walls<BasicSegmentWall<Real>>(); }
-  const std::vector<BasicArcWall<Real>>& arcs() const { return walls<BasicArcWall<Real>>(); }
-  const std::vector<BasicEllipticArcWall<Real>>& elliptic_arcs() const { return walls<BasicEllipticArcWall<Real>>(); }
-  std::size_t wall_count() const { return count_; }
-  /// Every wall's id, kind by kind.
-  std::vector<WallId> wall_ids() const {
-    std::vector<WallId> ids;
-    for_each_kind([&](const auto& walls, int kind) {
-      for (int i = 0; i < int(walls.size()); ++i) ids.push_back({kind, i});
-    });
-    return ids;
-  }
-  /// fn(walls, kind) for each kind's vector of walls, in the order of WallId::kind.
-  template <class Fn>
-  void for_each_kind(Fn&& fn) const {
-    [&]<std::size_t... k>(std::index_sequence<k...>) {
-      (fn(std::get<k>(walls_), int(k)), ...);
-    }(std::make_index_sequence<kind_count>{});
-  }
-  /// fn(walls, kind) for each kind in turn until one returns true; whether one did.
-  template <class Fn>
-  bool any_kind(Fn&& fn) const {
-    return [&]<std::size_t... k>(std::index_sequence<k...>) {
-      return (fn(std::get<k>(walls_), int(k)) || ...);
-    }(std::make_index_sequence<kind_count>{});
-  }
-  /// fn(wall) for the wall `id`; returns what fn returns.
-  template <class Fn>
-  decltype(auto) visit(const WallId& id, Fn&& fn) const {
-    return visit_kind<0>(id, fn);
-  }
+  const std::vector<BasicSegmentWall<Real>>& segments() const { return Base::template walls<BasicSegmentWall<Real>>(); }
+  const std::vector<BasicArcWall<Real>>& arcs() const { return Base::template walls<BasicArcWall<Real>>(); }
+  const std::vector<BasicEllipticArcWall<Real>>& elliptic_arcs() const { return Base::template walls<BasicEllipticArcWall<Real>>(); }
   /// The point of the wall nearest p (hit points are projected: see walls.hpp), and the
   /// region's outward unit normal there.
   std::pair<V, V> contact(const WallId& wall, const V& p) const {
@@ -134,18 +111,8 @@ class BasicTable {
   const Classes& classes() const { return classes_; }
 
  private:
-  template <std::size_t k, class Fn>
-  decltype(auto) visit_kind(const WallId& id, Fn& fn) const {
-    if constexpr (k + 1 == kind_count) return fn(std::get<k>(walls_)[id.index]);
-    else return id.kind == int(k) ? fn(std::get<k>(walls_)[id.index]) : visit_kind<k + 1>(id, fn);
-  }
   void build_grid();
   void build_classes();
-  /// The walls of each kind: std::vector of each type in Kinds.
-  template <class... W>
-  static std::tuple<std::vector<W>...> vectors_of(std::tuple<W...>*);
-  decltype(vectors_of(static_cast<Kinds*>(nullptr))) walls_;
-  std::size_t count_ = 0;
   std::array<std::vector<geometry::SourceRef>, kind_count> sources_;
   std::array<std::vector<int>, kind_count> pieces_;
   std::vector<std::pair<WallId, std::pair<Vec2, Vec2>>> boxes_;  // bounding box of each wall

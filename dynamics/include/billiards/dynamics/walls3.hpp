@@ -1,5 +1,13 @@
-// 3-D walls and their exit times for straight flights (the 3-D counterpart of
-// dynamics/walls.hpp and free_flight.cpp, with the same rules):
+// 3-D wall primitives, beside the 2-D ones of walls.hpp and with the same queries: gap(x),
+// the signed gap (> 0 beyond the wall, on the side away from the region: the signed distance
+// to the plane, the triangle's plane or the sphere); normal_at, the region's outward unit
+// normal; within_span; contact (the hit point, as computed, and the normal there); box, a
+// bounding box (lo, hi) of the wall and its slack; curvature_at (signed, > 0 focusing: 1/r
+// in every direction for a sphere seen from inside, −1/r from outside, 0 for flat walls); and
+// `slack`, its rounding tolerance in distance units.
+//
+// Straight flights' exit times through them (`straight_exit_time`, walls3.cpp) follow the
+// rules of the 2-D ones:
 //
 // - exit_time gives the first time in [s.t, t_end] at which the flight crosses the wall
 //   OUTWARD within its span, or `never`;
@@ -18,25 +26,20 @@
 //   then GMP).
 #pragma once
 
+#include "billiards/dynamics/state.hpp"
 #include "billiards/geometry3/region3.hpp"
 
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
-namespace billiards::dynamics3 {
+namespace billiards::dynamics {
 
 using geometry3::Vec3;
 
-inline constexpr double never = std::numeric_limits<double>::infinity();
 /// Tolerance of "on the wall to rounding", relative to the coordinate scale (as in 2-D).
 inline constexpr double slack_ulps = 256 * std::numeric_limits<double>::epsilon();
-
-struct State3 {
-  Vec3 x = Vec3::Zero();
-  Vec3 v = Vec3::Zero();
-  double t = 0;
-};
 
 /// A face of a convex polyhedron: n·x ≤ offset.  No span test: the region is the
 /// intersection of the half-spaces, so the first plane the ray leaves through is the exit.
@@ -44,6 +47,12 @@ struct PlaneWall {
   Vec3 normal;
   double offset;
   double slack;
+  double gap(const Vec3& x) const { return normal.dot(x) - offset; }
+  Vec3 normal_at(const Vec3&) const { return normal; }
+  bool within_span(const Vec3&) const { return true; }
+  std::pair<Vec3, Vec3> contact(const Vec3& x) const { return {x, normal}; }
+  std::pair<Vec3, Vec3> box() const { return {Vec3::Constant(-never), Vec3::Constant(never)}; }  // all space
+  double curvature_at(const Vec3&) const { return 0; }
 };
 
 /// Ray data shared by all triangles of one query (the shear of Woop et al.).
@@ -68,6 +77,14 @@ struct TriangleWall {
       if (edge_normal[k].dot(x - p[k]) > slack) return false;
     return true;
   }
+  double gap(const Vec3& x) const { return normal.dot(x - p[0]); }
+  Vec3 normal_at(const Vec3&) const { return normal; }
+  std::pair<Vec3, Vec3> contact(const Vec3& x) const { return {x, normal}; }
+  std::pair<Vec3, Vec3> box() const {
+    const Vec3 pad = Vec3::Constant(slack);
+    return {p[0].cwiseMin(p[1]).cwiseMin(p[2]) - pad, p[0].cwiseMax(p[1]).cwiseMax(p[2]) + pad};
+  }
+  double curvature_at(const Vec3&) const { return 0; }
 };
 
 struct SphereWall {
@@ -79,13 +96,25 @@ struct SphereWall {
     const Vec3 u = (x - center) / radius;
     return focusing ? u : Vec3(-u);
   }
+  double gap(const Vec3& x) const {
+    const double d = (x - center).norm() - radius;
+    return focusing ? d : -d;
+  }
+  bool within_span(const Vec3&) const { return true; }
+  std::pair<Vec3, Vec3> contact(const Vec3& x) const { return {x, normal_at(x)}; }
+  std::pair<Vec3, Vec3> box() const {
+    const Vec3 r = Vec3::Constant(radius + slack);
+    return {center - r, center + r};
+  }
+  double curvature_at(const Vec3&) const { return (focusing ? 1 : -1) / radius; }
 };
 
-double exit_time(const State3& s, const PlaneWall& w, double t_end);
-double exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double t_end);
-double exit_time(const State3& s, const SphereWall& w, double t_end);
+/// The exit times of straight flights (see the rules above; FreeFlight3 calls them).
+double straight_exit_time(const State3& s, const PlaneWall& w, double t_end);
+double straight_exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double t_end);
+double straight_exit_time(const State3& s, const SphereWall& w, double t_end);
 
 /// Exact sign of r²|v|² − |(x − c) × v|² (the ray meets the sphere iff > 0), filtered.
 int sphere_discriminant_sign_filtered(const Vec3& x, const Vec3& c, const Vec3& v, double r);
 
-}  // namespace billiards::dynamics3
+}  // namespace billiards::dynamics

@@ -1,5 +1,5 @@
-// 3-D tables: walls from a Region3, the triangle BVH, collision search, reflection, sampling.
-#include "billiards/dynamics3/table3.hpp"
+// 3-D tables: walls from a Region3, the triangle BVH, collision search, sampling.
+#include "billiards/dynamics/table3.hpp"
 
 #include "billiards/dynamics/certified_scan.hpp"
 
@@ -7,7 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 
-namespace billiards::dynamics3 {
+namespace billiards::dynamics {
 
 using namespace geometry3;
 
@@ -81,28 +81,31 @@ struct SlabRay {
 
 // ---------------------------------------------------------------- table
 
-Table3::Table3(const Region3& region) : region_(region) {
+Table3::BasicTable(const Region3& region) : region_(region) {
   const auto m = measures_of(region);
   lo_ = m.bbox_lo;
   hi_ = m.bbox_hi;
   const double slack = slack_ulps * std::max(lo_.cwiseAbs().maxCoeff(), hi_.cwiseAbs().maxCoeff());
   slack_ = slack;
+  auto& planes = mutable_walls<PlaneWall>();
+  auto& triangles = mutable_walls<TriangleWall>();
+  auto& spheres = mutable_walls<SphereWall>();
   const auto sphere = [&](const Ball& b, bool focusing) {
-    spheres_.push_back({b.center, b.radius, b.radius * b.radius, focusing, slack});
+    spheres.push_back({b.center, b.radius, b.radius * b.radius, focusing, slack});
   };
   if (const auto* p = std::get_if<ConvexPolyhedron>(&region.outer))
-    for (const Plane& pl : p->planes) planes_.push_back({pl.normal, pl.offset, slack});
+    for (const Plane& pl : p->planes) planes.push_back({pl.normal, pl.offset, slack});
   if (const auto* m = std::get_if<TriangleMesh>(&region.outer))
     for (const auto& t : m->triangles)
-      triangles_.emplace_back(m->vertices[t[0]], m->vertices[t[1]], m->vertices[t[2]], slack);
+      triangles.emplace_back(m->vertices[t[0]], m->vertices[t[1]], m->vertices[t[2]], slack);
   if (const auto* b = std::get_if<Ball>(&region.outer)) sphere(*b, true);
   for (const Ball& b : region.holes) sphere(b, false);
-  bvh_ = Bvh(triangles_, 4 * slack);
+  bvh_ = Bvh(triangles, 4 * slack);
   // Store the triangles in the BVH's leaf order: a leaf's triangles are then contiguous.
   std::vector<TriangleWall> sorted;
-  sorted.reserve(triangles_.size());
-  for (int i : bvh_.order()) sorted.push_back(triangles_[i]);
-  triangles_ = std::move(sorted);
+  sorted.reserve(triangles.size());
+  for (int i : bvh_.order()) sorted.push_back(triangles[i]);
+  triangles = std::move(sorted);
 }
 
 /// Walks the BVH nearest box first along the ray `origin + τ dir` (τ after `t0`), boxes grown
@@ -110,10 +113,10 @@ Table3::Table3(const Region3& region) : region_(region) {
 template <class Exit>
 void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best,
                               Exit exit) const {
-  if (triangles_.empty()) return;
+  const auto& triangles = this->triangles();
+  if (triangles.empty()) return;
   const SlabRay slab(origin, dir, pad);
   const auto& nodes = bvh_.nodes();
-  const int base = int(planes_.size());
   struct Entry {
     int node;
     double t_in;  // where the ray enters its box
@@ -128,8 +131,8 @@ void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, d
     const Bvh::Node& n = nodes[e.node];
     if (n.count > 0) {
       for (int i = n.first; i < n.first + n.count; ++i) {
-        const double t = exit(triangles_[i], best.t);
-        if (t < best.t) best.t = t, best.wall = base + i;
+        const double t = exit(triangles[i], best.t);
+        if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
       }
       continue;
     }
@@ -153,95 +156,85 @@ void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, d
   }
 }
 
-Hit3 Table3::collision(const State3& s, double t_end) const {
-  Hit3 best;
-  best.t = t_end;
-  for (int w = 0; w < int(planes_.size()); ++w) {
-    const double t = exit_time(s, planes_[w], best.t);
-    if (t < best.t) best.t = t, best.wall = w;
-  }
-  const Ray ray(s.x, s.v);
-  search_triangles(s.x, s.v, 0, s.t, best,
-                   [&](const TriangleWall& w, double t_end) { return exit_time(s, ray, w, t_end); });
-  const int base = int(planes_.size() + triangles_.size());
-  for (int w = 0; w < int(spheres_.size()); ++w) {
-    const double t = exit_time(s, spheres_[w], best.t);
-    if (t < best.t) best.t = t, best.wall = base + w;
-  }
-  if (!best.found()) return best;
-  best.point = s.x + s.v * (best.t - s.t);
-  best.normal = normal_at(best.wall, best.point);
-  return best;
+namespace {
+
+/// The planes' and spheres' first hit by a driven flight, their windows searched in time order
+/// (as in 2-D: DrivenScan::first_hit).
+void first_hit_in_windows(const Table3& table, const scan::Quiver<PeriodicDriveFlight3, DrivenState3>& q,
+                          double t_end, Hit3& best) {
+  using Quiver3 = scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
+  const auto& planes = table.planes();
+  const auto& spheres = table.spheres();
+  const int np = int(planes.size()), ns = int(spheres.size());
+  auto never_passes = [](double, double) { return false; };  // no spans to cull by
+  auto everywhere = [](const Vec3&) { return true; };
+  auto visit = [&](int w, auto&& fn) {
+    if (w < np) {
+      const PlaneWall& p = planes[w];
+      fn(scan::PlaneGap<Quiver3, Vec3>(q, p.normal, Vec3(p.normal * p.offset), p.slack), never_passes, everywhere);
+    } else {
+      const SphereWall& b = spheres[w - np];
+      fn(scan::SphereGap<Quiver3, Vec3>(q, b.center, b.radius, b.focusing, b.slack), never_passes, everywhere);
+    }
+  };
+  double tau_best = t_end - q.s.t;
+  int wall = -1;
+  scan::PhaseSample<double> phase;  // (unused: the hit's state is advanced afresh)
+  scan::first_hit_in_windows(np + ns, visit, tau_best, wall, phase);
+  if (wall < 0) return;
+  best.t = q.s.t + tau_best;
+  best.wall = wall < np ? WallId{wall_kind3::plane, wall} : WallId{wall_kind3::sphere, wall - np};
 }
 
-DrivenHit3 Table3::collision(const PeriodicDriveFlight3& flight, const DrivenState3& s, double t_end) const {
-  using Quiver3 = dynamics::scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
-  Hit3 best;
+}  // namespace
+
+template <class Flight>
+FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight::State& s, double t_end) const {
+  FlightHit<Flight> best;
   best.t = t_end;
-  const Quiver3 q(flight, s);
-  const int np = int(planes_.size()), nt = int(triangles_.size()), ns = int(spheres_.size());
-  if (q.creeping || np + ns > dynamics::scan::windows_in_time_order_walls) {  // (as in 2-D: DrivenScan::first_hit)
-    for (int w = 0; w < np; ++w) {
-      const double t = flight.exit_time(s, planes_[w], best.t);
-      if (t < best.t) best.t = t, best.wall = w;
-    }
-    for (int w = 0; w < ns; ++w) {
-      const double t = flight.exit_time(s, spheres_[w], best.t);
-      if (t < best.t) best.t = t, best.wall = np + nt + w;
-    }
-  } else {
-    // Planes and spheres: their windows in time order, as in 2-D (no spans to cull by).
-    auto never_passes = [](double, double) { return false; };
-    auto everywhere = [](const Vec3&) { return true; };
-    auto visit = [&](int w, auto&& fn) {
-      if (w < np) {
-        const PlaneWall& p = planes_[w];
-        fn(dynamics::scan::PlaneGap<Quiver3, Vec3>(q, p.normal, Vec3(p.normal * p.offset), p.slack), never_passes,
-           everywhere);
+  if constexpr (is_straight<Flight>) {
+    const auto scan = flight.scan_from(s);
+    for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+      if constexpr (std::is_same_v<W, TriangleWall>) {
+        search_triangles(s.x, s.v, 0, s.t, best, [&](const TriangleWall& w, double t) { return scan.exit_time(w, t); });
       } else {
-        const SphereWall& b = spheres_[w - np];
-        fn(dynamics::scan::SphereGap<Quiver3, Vec3>(q, b.center, b.radius, b.focusing, b.slack), never_passes,
-           everywhere);
+        for (int i = 0, n = int(walls.size()); i < n; ++i) {
+          const double t = scan.exit_time(walls[i], best.t);
+          if (t < best.t) best.t = t, best.wall = {kind, i};
+        }
       }
-    };
-    double tau_best = t_end - s.t;
-    int wall = -1;
-    dynamics::scan::PhaseSample<double> phase;  // (unused: the 3-D advance takes no sample)
-    dynamics::scan::first_hit_in_windows(np + ns, visit, tau_best, wall, phase);
-    if (wall >= 0) best.t = s.t + tau_best, best.wall = wall < np ? wall : wall + nt;
-  }
-  if (nt > 0) {
+    });
+  } else {
+    const scan::Quiver<Flight, typename Flight::State> q(flight, s);
+    const int walls = int(planes().size() + spheres().size());
+    if (q.creeping || walls > scan::windows_in_time_order_walls) {
+      for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+        if constexpr (!std::is_same_v<W, TriangleWall>) {
+          for (int i = 0, n = int(walls.size()); i < n; ++i) {
+            const double t = flight.exit_time(s, walls[i], best.t);
+            if (t < best.t) best.t = t, best.wall = {kind, i};
+          }
+        }
+      });
+    } else {
+      first_hit_in_windows(*this, q, t_end, best);
+    }
     // The particle stays within δ = |F|/(mω²) of its guiding line: boxes grown by δ (and the
     // scan's rounding band) along that line hold every triangle it can cross.
     search_triangles(q.g0, q.u, q.delta + 2 * slack_, s.t, best,
                      [&](const TriangleWall& w, double t) { return flight.exit_time(s, w, t); });
   }
-  if (!best.found()) return {best, {}};
-  DrivenHit3 hit{best, flight.advance(s, best.t)};
-  hit.point = hit.state.x;
-  hit.normal = normal_at(hit.wall, hit.point);
-  return hit;
+  if (!best.found()) return best;
+  best.state = flight.advance(s, best.t);
+  std::tie(best.point, best.normal) = contact(best.wall, best.state.x);
+  return best;
 }
 
-Vec3 Table3::normal_at(int wall, const Vec3& x) const {
-  const int np = int(planes_.size()), nt = int(triangles_.size());
-  if (wall < np) return planes_[wall].normal;
-  if (wall < np + nt) return triangles_[wall - np].normal;
-  return spheres_[wall - np - nt].normal_at(x);
-}
+template FlightHit<FreeFlight3> Table3::collision(const FreeFlight3&, const State3&, double) const;
+template FlightHit<PeriodicDriveFlight3> Table3::collision(const PeriodicDriveFlight3&, const DrivenState3&,
+                                                           double) const;
 
-void bounce(State3& s, const Hit3& hit, double v2) {
-  bounce(FreeFlight3{}, s, hit);
-  s.v *= std::sqrt(v2 / s.v.squaredNorm());
-}
-
-void bounce(const PeriodicDriveFlight3&, DrivenState3& s, const DrivenHit3& hit) {
-  s = hit.state;
-  s.x = hit.point;
-  s.v -= 2 * s.v.dot(hit.normal) * hit.normal;
-}
-
-State3 sample_microcanonical(const Table3& table, double speed, dynamics::ParticleRng& rng) {
+State3 sample_microcanonical(const Table3& table, double speed, ParticleRng& rng) {
   const Vec3 size = table.hi() - table.lo();
   State3 s;
   do {
@@ -253,4 +246,4 @@ State3 sample_microcanonical(const Table3& table, double speed, dynamics::Partic
   return s;
 }
 
-}  // namespace billiards::dynamics3
+}  // namespace billiards::dynamics

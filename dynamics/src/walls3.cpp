@@ -1,11 +1,11 @@
 // Exit times of straight 3-D flights (see walls3.hpp for the rules).
-#include "billiards/dynamics3/walls3.hpp"
+#include "billiards/dynamics/walls3.hpp"
 
 #include <gmpxx.h>
 
 #include <algorithm>
 
-namespace billiards::dynamics3 {
+namespace billiards::dynamics {
 
 namespace {
 
@@ -70,7 +70,7 @@ TriangleWall::TriangleWall(const Vec3& a, const Vec3& b, const Vec3& c, double s
   span_slack = slack * longest / (b - a).cross(c - a).norm();  // slack / smallest altitude
 }
 
-double exit_time(const State3& s, const PlaneWall& w, double t_end) {
+double straight_exit_time(const State3& s, const PlaneWall& w, double t_end) {
   const double rate = w.normal.dot(s.v);
   if (!(rate > 0)) return never;
   const double beyond = w.normal.dot(s.x) - w.offset;
@@ -79,7 +79,7 @@ double exit_time(const State3& s, const PlaneWall& w, double t_end) {
   return t <= t_end ? t : never;
 }
 
-double exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double t_end) {
+double straight_exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double t_end) {
   const double beyond = w.normal.dot(s.x - w.p[0]);
   if (beyond > w.slack) return never;  // elsewhere in a non-convex region
   if (beyond >= 0) return w.normal.dot(s.v) > 0 && w.within_span(s.x) ? s.t : never;
@@ -101,7 +101,7 @@ double exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double 
   return t <= t_end ? t : never;
 }
 
-double exit_time(const State3& s, const SphereWall& w, double t_end) {
+double straight_exit_time(const State3& s, const SphereWall& w, double t_end) {
   // |f + v τ|² − r² = a τ² + 2 b τ + c with f = x − centre (as for 2-D full circles).
   const Vec3 f = s.x - w.center;
   const double a = s.v.squaredNorm(), b = f.dot(s.v), c = f.squaredNorm() - w.radius2;
@@ -128,4 +128,4 @@ double exit_time(const State3& s, const SphereWall& w, double t_end) {
   return t <= t_end ? t : never;
 }
 
-}  // namespace billiards::dynamics3
+}  // namespace billiards::dynamics

@@ -1,0 +1,117 @@
+// The 3-D billiard table: a Region3's walls by kind (WallKinds3: planes, mesh triangles,
+// spheres; WallSet's `for_each_kind` and `visit`), a bounding-volume hierarchy over the
+// triangles of a mesh (the acceleration structure that the uniform grid is in 2-D), and the
+// independent point-in-region test of geometry3.
+#pragma once
+
+#include "billiards/dynamics/collision.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics/random.hpp"
+#include "billiards/dynamics/table.hpp"
+#include "billiards/dynamics/wall_set.hpp"
+#include "billiards/dynamics/walls3.hpp"
+#include "billiards/geometry3/region3.hpp"
+
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace billiards::dynamics {
+
+/// The wall kinds of a 3-D table, in the order of WallId::kind.
+using WallKinds3 = std::tuple<PlaneWall, TriangleWall, SphereWall>;
+
+/// WallId::kind of each 3-D wall type: its position in WallKinds3.
+namespace wall_kind3 {
+inline constexpr int plane = 0, triangle = 1, sphere = 2;
+}
+
+/// Median-split BVH over triangles; boxes are padded by the walls' slack so that a ray
+/// within rounding of a triangle is never culled by its box.
+class Bvh {
+ public:
+  struct Node {
+    Vec3 lo, hi;
+    int first = 0, count = 0;  // a leaf: triangles [first, first + count) of `order`
+    int right = 0;             // an inner node: left child is the next node, right child here
+  };
+  Bvh() = default;
+  Bvh(const std::vector<TriangleWall>& triangles, double pad);
+  const std::vector<Node>& nodes() const { return nodes_; }
+  const std::vector<int>& order() const { return order_; }
+
+ private:
+  int build(const std::vector<TriangleWall>& tris, int first, int count, double pad);
+  std::vector<Node> nodes_;
+  std::vector<int> order_;
+};
+
+template <>
+class BasicTable<double, 3> : public WallSet<WallKinds3> {
+ public:
+  using V = Vec3;
+  static_assert(std::is_same_v<Kind<wall_kind3::plane>, PlaneWall> &&
+                std::is_same_v<Kind<wall_kind3::triangle>, TriangleWall> &&
+                std::is_same_v<Kind<wall_kind3::sphere>, SphereWall>);
+
+  /// Keeps a reference to `region` (for point location), which must outlive the table.
+  explicit BasicTable(const geometry3::Region3& region);
+
+  /// The first wall the flight (FreeFlight3 or PeriodicDriveFlight3) from `s` leaves the
+  /// region through, before `t_end`, with the flight's state there.  The walls other than
+  /// triangles are asked one by one (a driven flight's in the time order of their windows);
+  /// the triangles through the BVH, walked along the flight's guiding line with boxes grown by
+  /// its oscillation's amplitude |F|/(mω²).  For a particle inside the region and
+  /// t_end = never, found() == false means an escape.
+  template <class Flight>
+  FlightHit<Flight> collision(const Flight& flight, const typename Flight::State& s, double t_end = never) const;
+  /// Is x in the closed region (the independent point-in-region test of geometry3)?
+  bool contains(const Vec3& x) const { return geometry3::contains(region_, x); }
+  const std::vector<PlaneWall>& planes() const { return walls<PlaneWall>(); }
+  /// (In the BVH's leaf order.)
+  const std::vector<TriangleWall>& triangles() const { return walls<TriangleWall>(); }
+  const std::vector<SphereWall>& spheres() const { return walls<SphereWall>(); }
+  std::pair<Vec3, Vec3> contact(const WallId& wall, const Vec3& p) const {
+    return visit(wall, [&](const auto& w) { return w.contact(p); });
+  }
+  Vec3 normal_at(const WallId& wall, const Vec3& p) const {
+    return visit(wall, [&](const auto& w) { return w.normal_at(p); });
+  }
+  /// Signed curvature of the wall at p, seen from the region (> 0 focusing).
+  double curvature_at(const WallId& wall, const Vec3& p) const {
+    return visit(wall, [&](const auto& w) { return w.curvature_at(p); });
+  }
+  /// The wall's position among all walls, kind by kind: planes, triangles (in BVH order),
+  /// spheres.
+  int piece_of(const WallId& wall) const {
+    int before = 0;
+    for_each_kind([&](const auto& walls, int kind) { before += kind < wall.kind ? int(walls.size()) : 0; });
+    return before + wall.index;
+  }
+  const geometry3::Region3& region() const { return region_; }
+  const Vec3& lo() const { return lo_; }  // bounding box
+  const Vec3& hi() const { return hi_; }
+
+ private:
+  template <class Exit>
+  void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const;
+
+  const geometry3::Region3& region_;
+  Bvh bvh_;
+  Vec3 lo_, hi_;
+  double slack_ = 0;
+};
+using Table3 = BasicTable<double, 3>;
+
+/// `collision` (collision.hpp) for 3-D tables.
+template <class Flight>
+  requires(Flight::State::dimension == 3)
+FlightHit<Flight> collision(const Table3& table, const Flight& flight, const typename Flight::State& s,
+                            double t_end = never) {
+  return table.collision(flight, s, t_end);
+}
+
+/// Position uniform in the region (rejection from the bounding box), velocity isotropic.
+State3 sample_microcanonical(const Table3& table, double speed, ParticleRng& rng);
+
+}  // namespace billiards::dynamics
