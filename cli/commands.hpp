@@ -14,6 +14,9 @@ void add_plot(CLI::App& app);
 void add_fp(CLI::App& app);
 void add_compare(CLI::App& app);
 void add_bench(CLI::App& app);
+void add_bmap(CLI::App& app);
+void add_lyapunov(CLI::App& app);
+void add_chaos(CLI::App& app);
 
 /// The command line as typed, recorded in summary.json.
 void set_command_line(int argc, char** argv);

@@ -12,15 +12,15 @@ Shapes and scenes come from files, from dicts with the files' keys, and (scenes)
 plus keyword arguments; see docs/python.md.
 """
 from . import _core
-from ._core import (InputError, Scene, Shape, Shape3, coefficients, fokker_planck_cdf, fokker_planck_eta,
-                    fokker_planck_moments, fokker_planck_numerical, info, sample_moments, trajectory)
+from ._core import (InputError, Scene, Shape, Shape3, boundary_map, chaos, coefficients, fokker_planck_cdf, fokker_planck_eta,
+                    fokker_planck_moments, fokker_planck_numerical, info, lyapunov, sample_moments, trajectory)
 from .plotting import plot_run, plot_shape, plot_trajectory
 from .results import RunResult, Summary, run
 from .scenes import load_scene, load_shape
 
 __version__ = _core.__version__
 
-__all__ = ["InputError", "RunResult", "Scene", "Shape", "Shape3", "Summary", "coefficients", "fokker_planck_cdf",
+__all__ = ["InputError", "RunResult", "Scene", "Shape", "Shape3", "Summary", "boundary_map", "chaos", "coefficients", "fokker_planck_cdf",
            "fokker_planck_eta", "fokker_planck_moments", "fokker_planck_numerical", "info", "load_scene",
-           "load_shape", "plot_run", "plot_shape", "plot_trajectory", "run", "sample_moments", "trajectory",
+           "load_shape", "lyapunov", "plot_run", "plot_shape", "plot_trajectory", "run", "sample_moments", "trajectory",
            "__version__"]
