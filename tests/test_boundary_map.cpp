@@ -21,6 +21,12 @@ using analysis::BoundaryCoordinates;
 
 namespace {
 
+dynamics::SceneOverrides four_particles() {
+  dynamics::SceneOverrides o;
+  o.particles = 4;
+  return o;
+}
+
 geometry::Shape shape(const std::string& name) { return geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + name); }
 
 auto free_initial(const dynamics::Table& table, std::uint64_t seed = 7) {
@@ -150,7 +156,7 @@ TEST_CASE("line section of the square: |p| = |vx| is conserved, crossings upward
 }
 
 TEST_CASE("stroboscopic section: states at the drive phase asked for, with their kinetic energy") {
-  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-driven.yaml", {.particles = 4});
+  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-driven.yaml", four_particles());
   const dynamics::PeriodicDriveFlight flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   const dynamics::Table table(scene.shape.region);
   const double phase = 1.0;

@@ -20,6 +20,12 @@ using analysis::TangentBasis;
 
 namespace {
 
+dynamics::SceneOverrides four_particles() {
+  dynamics::SceneOverrides o;
+  o.particles = 4;
+  return o;
+}
+
 geometry::Shape shape(const std::string& name) { return geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + name); }
 
 Eigen::Vector4d phase_point(const dynamics::State& s) { return {s.x.x(), s.x.y(), s.v.x(), s.v.y()}; }
@@ -82,7 +88,7 @@ TEST_CASE("the tangent map equals finite differences: free flights on segments, 
 }
 
 TEST_CASE("the tangent map equals finite differences under the periodic drive and a static force") {
-  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/sinai-ellipse-driven.yaml", {.particles = 4});
+  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/sinai-ellipse-driven.yaml", four_particles());
   const dynamics::Table table(scene.shape.region);
   // A slow drive, so that the force changes the flights between collisions visibly.
   const dynamics::PeriodicDriveFlight drive{geometry::Vec2(3, 1), 7.0, 0.3};
@@ -120,7 +126,7 @@ TEST_CASE("the spectrum comes in conjugate pairs that sum to zero") {
     }
   }
   // Under the drive the energy changes, but the flow stays Hamiltonian: pairs again.
-  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-driven.yaml", {.particles = 4});
+  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-driven.yaml", four_particles());
   const dynamics::Table table(scene.shape.region);
   const dynamics::PeriodicDriveFlight flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   const auto r = analysis::lyapunov_spectrum(table, flight, dynamics::initial_states(scene, table, flight), 4, 20000, 2);

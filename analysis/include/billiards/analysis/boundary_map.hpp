@@ -23,6 +23,8 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace billiards::analysis {
@@ -46,11 +48,22 @@ class BoundaryCoordinates {
   /// The index in piece_starts of every loop's first piece, outer first.
   const std::vector<int>& loop_firsts() const { return loop_firsts_; }
   double perimeter() const { return starts_.back(); }
+  /// The piece holding arc length s (the later one at a joint), and the point at s.
+  int piece_at(double s) const;
+  Vec2 point_at(double s) const;
+  /// The region's outward unit normal at arc length s.
+  Vec2 normal_at(double s) const;
+  /// The loop (0 outer, then the holes) holding arc length s, and its range [first, end) of s.
+  int loop_at(double s) const;
+  std::pair<double, double> loop_range(int loop) const;
+  /// The arc length of x if x lies on the boundary (within `tolerance`), else nothing.
+  std::optional<double> locate(const Vec2& x, double tolerance) const;
 
  private:
   std::vector<geometry::Piece> pieces_;
   std::vector<double> starts_;
   std::vector<int> loop_firsts_;
+  std::vector<double> origins_;  // elliptic arcs: the primitive of the arc length at the source
 };
 
 /// A line n·x = c of the plane, n a unit vector: a Poincaré section.  A crossing counts when the
