@@ -3,6 +3,7 @@
 // first hits of a microcanonical ensemble against the invariant measure ds dp; the sections;
 // identical results for any thread count.
 #include "cli_helpers.hpp"
+#include "phase_space_helpers.hpp"
 
 #include "billiards/analysis/boundary_map.hpp"
 #include "billiards/analysis/statistics.hpp"
@@ -21,14 +22,6 @@ using analysis::BoundaryCoordinates;
 
 namespace {
 
-dynamics::SceneOverrides four_particles() {
-  dynamics::SceneOverrides o;
-  o.particles = 4;
-  return o;
-}
-
-geometry::Shape shape(const std::string& name) { return geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + name); }
-
 auto free_initial(const dynamics::Table& table, std::uint64_t seed = 7) {
   return dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, seed);
 }
@@ -39,7 +32,7 @@ double at(const analysis::SectionRows& r, std::size_t i, std::size_t j) { return
 }  // namespace
 
 TEST_CASE("circle: p is conserved and s advances by R (pi - 2 asin p) per bounce") {
-  const auto circle = shape("circle.yaml");
+  const auto circle = bundled_shape("circle.yaml");
   const dynamics::Table table(circle.region);
   const BoundaryCoordinates coordinates(circle.region);
   const double R = 1, S = 2 * geometry::pi * R;
@@ -59,7 +52,7 @@ TEST_CASE("circle: p is conserved and s advances by R (pi - 2 asin p) per bounce
 TEST_CASE("s names the hit point on every wall kind (point_along at the same arc length)") {
   for (const char* name : {"clover.yaml", "sinai-ellipse.yaml", "elliptic-stadium.yaml", "annulus.yaml", "mushroom.yaml"}) {
     INFO(name);
-    const auto s = shape(name);
+    const auto s = bundled_shape(name);
     const dynamics::Table table(s.region);
     const BoundaryCoordinates coordinates(s.region);
     std::vector<const geometry::Piece*> pieces;
@@ -100,7 +93,7 @@ TEST_CASE("first hits of a microcanonical ensemble, weighted by 1/chord, are uni
   // Kolmogorov–Smirnov test for s and one for p, at the weights' effective sample size.
   for (const char* name : {"clover.yaml", "sinai-ellipse.yaml", "elliptic-stadium.yaml", "sinai.yaml"}) {
     INFO(name);
-    const auto s = shape(name);
+    const auto s = bundled_shape(name);
     const dynamics::Table table(s.region);
     const BoundaryCoordinates coordinates(s.region);
     const std::size_t n = 20000;
@@ -129,7 +122,7 @@ TEST_CASE("first hits of a microcanonical ensemble, weighted by 1/chord, are uni
 }
 
 TEST_CASE("the boundary map and the sections are identical for any thread count") {
-  const auto s = shape("clover.yaml");
+  const auto s = bundled_shape("clover.yaml");
   const dynamics::Table table(s.region);
   const BoundaryCoordinates coordinates(s.region);
   const auto one = analysis::boundary_map(table, coordinates, dynamics::FreeFlight{}, free_initial(table), 9, 300, 1);
@@ -141,7 +134,7 @@ TEST_CASE("the boundary map and the sections are identical for any thread count"
 }
 
 TEST_CASE("line section of the square: |p| = |vx| is conserved, crossings upward at y = 1/2") {
-  const auto s = shape("square.yaml");
+  const auto s = bundled_shape("square.yaml");
   const dynamics::Table table(s.region);
   const analysis::SectionLine line{{0, 1}, 0.5};  // y = 1/2, crossed upward: d = (−1, 0)
   const auto initial = free_initial(table);
@@ -156,7 +149,7 @@ TEST_CASE("line section of the square: |p| = |vx| is conserved, crossings upward
 }
 
 TEST_CASE("stroboscopic section: states at the drive phase asked for, with their kinetic energy") {
-  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-driven.yaml", four_particles());
+  const auto scene = bundled_scene("clover-driven.yaml", 4);
   const dynamics::PeriodicDriveFlight flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   const dynamics::Table table(scene.shape.region);
   const double phase = 1.0;

@@ -4,6 +4,7 @@
 // square and ellipse, the conjugate pairing of the spectrum, and the Sinai table's maximal
 // exponent from the wave-front curvature recursion written here.
 #include "cli_helpers.hpp"
+#include "phase_space_helpers.hpp"
 
 #include "billiards/analysis/lyapunov.hpp"
 #include "billiards/analysis/statistics.hpp"
@@ -19,14 +20,6 @@ using namespace billiards;
 using analysis::TangentBasis;
 
 namespace {
-
-dynamics::SceneOverrides four_particles() {
-  dynamics::SceneOverrides o;
-  o.particles = 4;
-  return o;
-}
-
-geometry::Shape shape(const std::string& name) { return geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + name); }
 
 Eigen::Vector4d phase_point(const dynamics::State& s) { return {s.x.x(), s.x.y(), s.v.x(), s.v.y()}; }
 
@@ -68,7 +61,7 @@ void check_against_finite_differences(const dynamics::Table& table, const Flight
 
 analysis::LyapunovSpectrum free_spectrum(const std::string& name, std::size_t particles, std::size_t collisions,
                                          int threads = 2) {
-  const auto s = shape(name);
+  const auto s = bundled_shape(name);
   const dynamics::Table table(s.region);
   return analysis::lyapunov_spectrum(table, dynamics::FreeFlight{},
                                      dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 11), particles,
@@ -80,7 +73,7 @@ analysis::LyapunovSpectrum free_spectrum(const std::string& name, std::size_t pa
 TEST_CASE("the tangent map equals finite differences: free flights on segments, arcs and elliptic arcs") {
   for (const char* name : {"sinai.yaml", "clover.yaml", "elliptic-stadium.yaml", "sinai-ellipse.yaml", "mushroom.yaml"}) {
     INFO(name);
-    const auto sh = shape(name);
+    const auto sh = bundled_shape(name);
     const dynamics::Table table(sh.region);
     const auto initial = dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 5);
     for (std::size_t i = 0; i < 4; ++i) check_against_finite_differences(table, dynamics::FreeFlight{}, initial(i), 4);
@@ -88,7 +81,7 @@ TEST_CASE("the tangent map equals finite differences: free flights on segments, 
 }
 
 TEST_CASE("the tangent map equals finite differences under the periodic drive and a static force") {
-  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/sinai-ellipse-driven.yaml", four_particles());
+  const auto scene = bundled_scene("sinai-ellipse-driven.yaml", 4);
   const dynamics::Table table(scene.shape.region);
   // A slow drive, so that the force changes the flights between collisions visibly.
   const dynamics::PeriodicDriveFlight drive{geometry::Vec2(3, 1), 7.0, 0.3};
@@ -126,7 +119,7 @@ TEST_CASE("the spectrum comes in conjugate pairs that sum to zero") {
     }
   }
   // Under the drive the energy changes, but the flow stays Hamiltonian: pairs again.
-  const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-driven.yaml", four_particles());
+  const auto scene = bundled_scene("clover-driven.yaml", 4);
   const dynamics::Table table(scene.shape.region);
   const dynamics::PeriodicDriveFlight flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   const auto r = analysis::lyapunov_spectrum(table, flight, dynamics::initial_states(scene, table, flight), 4, 20000, 2);
@@ -140,7 +133,7 @@ TEST_CASE("Sinai table: the maximal exponent equals the wave-front curvature rec
   // An independent method on the same trajectories: B, the curvature of the unstable wave front
   // just after a bounce, grows the front by |1 + τB| over a flight τ (speed 1), and becomes
   // B/(1 + τB) there; a bounce adds 2K/cos φ, K the wall's dispersing curvature (−κ).
-  const auto sh = shape("sinai.yaml");
+  const auto sh = bundled_shape("sinai.yaml");
   const dynamics::Table table(sh.region);
   const auto initial = dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 11);
   const std::size_t particles = 24, collisions = 20000;
