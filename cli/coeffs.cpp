@@ -1,6 +1,7 @@
 // billiard coeffs SCENE: the theory's prediction, before any dynamics.
 #include "commands.hpp"
 #include "options.hpp"
+#include "phase_space.hpp"
 
 #include "billiards/analysis.hpp"
 #include "billiards/dynamics/scene.hpp"
@@ -43,10 +44,16 @@ void add_coeffs(CLI::App& app) {
     if (!c)
       throw InputError(args->scene, 0,
                        "coeffs needs a periodic force (uniform or field) and a microcanonical initial energy");
-    if (args->json)
-      std::cout << nlohmann::json(*c).dump(2) << "\n";
-    else
+    // The theory assumes a chaotic, ergodic undriven table: its verdict beside the prediction.
+    const auto chaos = scene.dimension == 2 ? ergodicity_check(scene.shape.region) : nlohmann::json();
+    if (args->json) {
+      auto j = nlohmann::json(*c);
+      j["chaos_check"] = chaos;
+      std::cout << j.dump(2) << "\n";
+    } else {
       print_prediction(*c, scene.time);
+      if (!chaos.is_null()) print_ergodicity(chaos);
+    }
   });
 }
 

@@ -15,6 +15,10 @@ void add_fp(CLI::App& app);
 void add_compare(CLI::App& app);
 void add_bench(CLI::App& app);
 void add_animate(CLI::App& app);
+void add_bmap(CLI::App& app);
+void add_lyapunov(CLI::App& app);
+void add_chaos(CLI::App& app);
+void add_escape(CLI::App& app);
 
 /// The command line as typed, recorded in summary.json.
 void set_command_line(int argc, char** argv);

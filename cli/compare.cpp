@@ -3,6 +3,7 @@
 // whole distribution, each beside the value sampling noise alone would give.  The prediction is
 // the analytic solution, or with a potential the numerical one.
 #include "commands.hpp"
+#include "phase_space.hpp"
 #include "python.hpp"
 #include "ranks.hpp"
 #include "run.hpp"
@@ -164,6 +165,9 @@ void compare(const CompareArgs& args) {
   // Before the run, so that its errors come first.
   const auto fp = prediction_at_record_times(scene, *prediction, args.cells);
   if (ranks().root()) OutputDir::require_creatable(scene.output_dir);
+  // The theory assumes a chaotic, ergodic undriven table: its verdict beside the prediction.
+  const auto chaos = scene.dimension == 2 ? ergodicity_check(scene.shape.region) : nlohmann::json();
+  if (!chaos.is_null() && ranks().root()) print_ergodicity(chaos);
   const auto run = run_ensemble(scene, args);
   if (!run || !ranks().root()) return;
   std::vector<Fit> fits;
@@ -175,7 +179,8 @@ void compare(const CompareArgs& args) {
   write_run_files(out, *run, args);
   if (fp.numerical) out.write_text("fokker-planck.csv", numerical_table(*fp.numerical));
   out.write_json("comparison.json", {{"scene", scene.file}, {"command", command_line()},
-                                     {"prediction", *run->prediction}, {"bins", args.bins}, {"times", times}});
+                                     {"prediction", *run->prediction}, {"chaos_check", chaos}, {"bins", args.bins},
+                                     {"times", times}});
   out.write_text("comparison.csv", histogram_csv(fits));
   run_python(script_path("plot_compare.py"), {out.path("").string()});
   out.commit();

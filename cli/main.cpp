@@ -63,6 +63,10 @@ int main(int argc, char** argv) {
   billiards::cli::add_compare(app);
   billiards::cli::add_bench(app);
   billiards::cli::add_animate(app);
+  billiards::cli::add_bmap(app);
+  billiards::cli::add_lyapunov(app);
+  billiards::cli::add_chaos(app);
+  billiards::cli::add_escape(app);
   bool speaks = true;  // in an MPI job only the first rank prints; all compute
   const auto error = [&](const std::string& message, int status) {
     if (speaks) fmt::print(stderr, "billiard: error: {}\n", message);

@@ -35,6 +35,8 @@ using namespace pybind11::literals;
 
 namespace billiards::python {
 
+void def_phase_space(py::module_& m);  // phase_space.cpp
+
 namespace {
 
 using geometry::Shape;
@@ -509,6 +511,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "Billiards: exact geometry of 2-D tables and 3-D regions, deterministic ensembles of driven particles, "
             "and the energy-diffusion theory of Hodson & Jarzynski (the library behind the `billiard` program).";
   m.attr("__version__") = billiards::version;
+  def_phase_space(m);
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   m.def("sample_moments", [](const std::vector<double>& x) {
           const auto mo = analysis::sample_moments(x);

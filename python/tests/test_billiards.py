@@ -58,6 +58,7 @@ def test_coefficients_equal_cli(source, omega):
     scene_file = source / "scenes" / "clover-driven.yaml"
     cli = billiard_json("coeffs", scene_file, *(["--omega", omega] if omega else []))
     scene = bk.load_scene(scene_file, omega=None if omega is None else 320 * math.pi)
+    cli.pop("chaos_check")  # (the CLI's verdict on the table: bk.chaos)
     assert bk.coefficients(scene) == cli
     # The same from the shape and the drive.
     F = scene.force["amplitude"]
@@ -276,3 +277,18 @@ def test_plot_draws_the_modules_trajectory(source, tmp_path, shape_file):
     walk = bk.trajectory(bk.load_shape(source / shape_file), collisions=40, seed=7)
     assert not walk["escaped"]
     np.testing.assert_array_equal(drawn, walk["positions"])
+
+
+def test_phase_space_functions_give_the_programs_numbers(source, tmp_path):
+    """bk.boundary_map is bmap.npy, bk.lyapunov and bk.chaos are the --json figures of the CLI."""
+    shape = bk.load_shape(source / "shapes" / "clover.yaml")
+    rows = bk.boundary_map(shape, particles=3, collisions=200, seed=4)
+    billiard("bmap", "shapes/clover.yaml", "--particles", 3, "--collisions", 200, "--seed", 4, "--quiet",
+             "--no-csv", "--out", tmp_path / "bmap")
+    assert rows.shape == (600, 6)
+    assert np.array_equal(rows, np.load(tmp_path / "bmap" / "bmap.npy"))
+    lyap = bk.lyapunov(shape, particles=3, collisions=2000)
+    cli = billiard_json("lyapunov", "shapes/clover.yaml", "--particles", 3, "--collisions", 2000, "--quiet")
+    assert lyap["lyapunov"] == cli["lyapunov"] and lyap["lyapunov_se"] == cli["lyapunov_se"]
+    assert np.allclose(lyap["per_trajectory"].sum(axis=1), 0, atol=1e-9)
+    assert bk.chaos(shape, orbits=3, collisions=5000)["ergodic"] is True

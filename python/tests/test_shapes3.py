@@ -142,6 +142,7 @@ def test_coefficients_in_3d_equal_cli(source):
     scene_file = source / "scenes" / "sinai3-driven.yaml"
     cli = billiard_json("coeffs", scene_file)
     scene = bk.load_scene(scene_file)
+    assert cli.pop("chaos_check") is None  # (2-D only)
     assert cli["dimension"] == 3 and bk.coefficients(scene) == cli
     F = scene.force["amplitude"]
     assert bk.coefficients(scene.shape, F=F, omega=scene.force["omega"], E=scene.energy) == cli

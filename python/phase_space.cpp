@@ -1,0 +1,147 @@
+// billiardkit's phase-space functions: boundary_map, lyapunov and chaos, on a Shape (free
+// flights at speed 1) or a 2-D Scene (its force, energy and seed), with the numbers of
+// `billiard bmap`, `billiard lyapunov` and `billiard chaos`.
+#include "billiards/analysis/boundary_map.hpp"
+#include "billiards/analysis/chaos.hpp"
+#include "billiards/analysis/lyapunov.hpp"
+#include "billiards/dynamics/scene_run.hpp"
+#include "billiards/geometry/shape_file.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <fmt/core.h>
+
+#include <memory>
+
+namespace py = pybind11;
+using namespace pybind11::literals;
+
+namespace billiards::python {
+
+namespace {
+
+using dynamics::Scene;
+
+/// A Shape as a free scene at speed 1 with `particles` microcanonical particles, or a 2-D Scene
+/// with its own (particles overriding its count when given).
+Scene scene_of(const py::object& table, std::optional<std::size_t> particles, std::optional<std::uint64_t> seed) {
+  Scene scene;
+  if (py::isinstance<geometry::Shape>(table)) {
+    scene.shape = table.cast<geometry::Shape>();
+    scene.energy = 0.5;
+    scene.particles = particles.value_or(10);
+    scene.seed = seed.value_or(1);
+    return scene;
+  }
+  scene = table.cast<Scene>();
+  if (scene.dimension != 2) throw py::value_error("the phase-space functions work on 2-D tables only");
+  if (particles) {
+    if (!scene.initial_states.empty() && *particles > scene.initial_states.size())
+      throw py::value_error("more particles than the scene's initial-condition file holds");
+    scene.particles = *particles;
+  }
+  if (seed) scene.seed = *seed;
+  return scene;
+}
+
+py::array_t<double> rows_array(const analysis::SectionRows& r) {
+  return py::array_t<double>({py::ssize_t(r.row_count()), py::ssize_t(r.columns)}, r.rows.data());
+}
+
+py::array_t<double> boundary_map(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
+                                 std::optional<std::uint64_t> seed, int threads) {
+  const Scene scene = scene_of(table, particles, seed);
+  const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+  analysis::SectionRows rows;
+  {
+    py::gil_scoped_release unlocked;
+    rows = dynamics::with_flight(scene, [&](const auto& flight) {
+      using Flight = std::decay_t<decltype(flight)>;
+      if constexpr (dynamics::is_3d<Flight>) {
+        return analysis::SectionRows{};  // (refused by scene_of)
+      } else {
+        const auto t = dynamics::table_of<Flight>(scene);
+        return analysis::boundary_map(t, coordinates, flight, dynamics::initial_states(scene, t, flight),
+                                      scene.particles, collisions, threads, scene.mass);
+      }
+    });
+  }
+  return rows_array(rows);
+}
+
+py::dict lyapunov(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
+                  std::optional<std::uint64_t> seed, int threads) {
+  const Scene scene = scene_of(table, particles, seed);
+  analysis::LyapunovSpectrum r;
+  {
+    py::gil_scoped_release unlocked;
+    r = dynamics::with_flight(scene, [&](const auto& flight) {
+      using Flight = std::decay_t<decltype(flight)>;
+      if constexpr (analysis::tangent_flight<Flight>) {
+        const auto t = dynamics::table_of<Flight>(scene);
+        return analysis::lyapunov_spectrum(t, flight, dynamics::initial_states(scene, t, flight), scene.particles,
+                                           collisions, threads);
+      } else {
+        throw py::value_error(fmt::format("no tangent dynamics for the force '{}' (free, constant and periodic only)",
+                                          scene.force.name()));
+        return analysis::LyapunovSpectrum{};
+      }
+    });
+  }
+  std::vector<double> per_time(r.trajectories.size() * 4), per_collision(per_time.size());
+  for (std::size_t i = 0; i < r.trajectories.size(); ++i)
+    for (int k = 0; k < 4; ++k) {
+      per_time[i * 4 + k] = r.exponent(i, k);
+      per_collision[i * 4 + k] = r.trajectories[i].log_stretch[k] / double(r.trajectories[i].collisions);
+    }
+  const auto n = py::ssize_t(r.trajectories.size());
+  std::vector<double> spectrum, spectrum_se;
+  for (const auto& e : r.per_time) spectrum.push_back(e.mean), spectrum_se.push_back(e.se);
+  return py::dict("lyapunov"_a = r.per_time[0].mean, "lyapunov_se"_a = r.per_time[0].se,
+                  "lyapunov_per_collision"_a = r.per_collision[0].mean,
+                  "lyapunov_per_collision_se"_a = r.per_collision[0].se,
+                  "spectrum"_a = py::array_t<double>(4, spectrum.data()),
+                  "spectrum_se"_a = py::array_t<double>(4, spectrum_se.data()),
+                  "per_trajectory"_a = py::array_t<double>({n, py::ssize_t(4)}, per_time.data()),
+                  "per_trajectory_per_collision"_a = py::array_t<double>({n, py::ssize_t(4)}, per_collision.data()),
+                  "escapes"_a = r.escapes());
+}
+
+py::dict chaos(const geometry::Shape& shape, std::size_t orbits, std::size_t collisions, std::uint64_t seed,
+               int threads) {
+  analysis::ChaosOptions o;
+  o.orbits = orbits;
+  o.collisions = collisions;
+  o.seed = seed;
+  o.threads = threads;
+  analysis::ChaosVerdict v;
+  {
+    py::gil_scoped_release unlocked;
+    v = analysis::chaos_of(shape.region, o);
+  }
+  std::vector<double> exponents, distances;
+  for (const auto& e : v.orbits) exponents.push_back(e.lyapunov_per_collision), distances.push_back(e.distance);
+  return py::dict("ergodic"_a = v.ergodic(), "chaotic"_a = v.chaotic, "uniform"_a = v.uniform,
+                  "lyapunov"_a = v.lyapunov.mean, "lyapunov_se"_a = v.lyapunov.se,
+                  "pooled_distance"_a = v.pooled_distance, "noise_distance"_a = v.noise_distance,
+                  "orbit_exponents_per_collision"_a = py::array_t<double>(py::ssize_t(exponents.size()), exponents.data()),
+                  "orbit_distances"_a = py::array_t<double>(py::ssize_t(distances.size()), distances.data()));
+}
+
+}  // namespace
+
+void def_phase_space(py::module_& m) {
+  m.def("boundary_map", &boundary_map, "table"_a, py::kw_only(), "particles"_a = py::none(), "collisions"_a = 1000,
+        "seed"_a = py::none(), "threads"_a = 0,
+        R"(The boundary map of a Shape (free, speed 1) or a 2-D Scene: an array (particles x collisions, 6) with
+columns particle, collision, s, p, t, energy -- `billiard bmap`'s bmap.npy (docs/phase-space.md).)");
+  m.def("lyapunov", &lyapunov, "table"_a, py::kw_only(), "particles"_a = py::none(), "collisions"_a = 20000,
+        "seed"_a = py::none(), "threads"_a = 0,
+        "Lyapunov exponents from tangent dynamics: `billiard lyapunov --json`'s keys, and per_trajectory arrays.");
+  m.def("chaos", &chaos, "shape"_a, py::kw_only(), "orbits"_a = 12, "collisions"_a = 50000, "seed"_a = 1,
+        "threads"_a = 0, "Is the undriven table chaotic and ergodic? `billiard chaos --json`'s main keys.");
+}
+
+}  // namespace billiards::python

@@ -1,0 +1,187 @@
+// Lyapunov exponents from tangent dynamics (analysis/lyapunov.hpp) against what is known
+// without that code: the tangent map against finite differences of two trajectories (free
+// flights on every wall kind, the periodic drive), zero exponents in the integrable circle,
+// square and ellipse, the conjugate pairing of the spectrum, and the Sinai table's maximal
+// exponent from the wave-front curvature recursion written here.
+#include "cli_helpers.hpp"
+#include "phase_space_helpers.hpp"
+
+#include "billiards/analysis/lyapunov.hpp"
+#include "billiards/analysis/statistics.hpp"
+#include "billiards/dynamics/scene_run.hpp"
+#include "billiards/geometry/shape_file.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace billiards;
+using analysis::TangentBasis;
+
+namespace {
+
+Eigen::Vector4d phase_point(const dynamics::State& s) { return {s.x.x(), s.x.y(), s.v.x(), s.v.y()}; }
+
+/// The state at time t_end of the flight from s through `collisions` bounces.
+template <class Flight>
+typename Flight::State after(const dynamics::Table& table, const Flight& flight, typename Flight::State s,
+                             std::size_t collisions, double t_end) {
+  dynamics::evolve(table, flight, s, collisions, [&](const auto&, const auto& bounced) { s = bounced; });
+  return flight.advance(s, t_end);
+}
+
+/// The tangent map over `collisions` bounces (to half way to the next) against central
+/// differences of perturbed trajectories, column by column.
+template <class Flight>
+void check_against_finite_differences(const dynamics::Table& table, const Flight& flight,
+                                      const typename Flight::State& s, std::size_t collisions) {
+  TangentBasis q = TangentBasis::Identity();
+  std::size_t made = 0;
+  const auto end = analysis::carry_tangent(table, flight, s, collisions, q, made, [](auto&, const auto&) {});
+  REQUIRE(made == collisions);
+  const auto next = dynamics::collision(table, flight, end);
+  const double t_end = 0.5 * (end.t + next.t);
+  analysis::tangent_flight_step(q, t_end - end.t);
+  const double h = 1e-7;
+  for (int j = 0; j < 4; ++j) {
+    auto plus = s, minus = s;
+    const auto shift = [&](auto& state, double sign) {
+      if (j < 2) state.x[j] += sign * h;
+      else state.v[j - 2] += sign * h;
+    };
+    shift(plus, 1);
+    shift(minus, -1);
+    const Eigen::Vector4d fd = (phase_point(after(table, flight, plus, collisions, t_end)) -
+                                phase_point(after(table, flight, minus, collisions, t_end))) / (2 * h);
+    INFO("column " << j << ": tangent " << q.col(j).transpose() << ", finite differences " << fd.transpose());
+    CHECK((q.col(j) - fd).norm() <= 1e-4 * (1 + fd.norm()));
+  }
+}
+
+analysis::LyapunovSpectrum free_spectrum(const std::string& name, std::size_t particles, std::size_t collisions,
+                                         int threads = 2) {
+  const auto s = bundled_shape(name);
+  const dynamics::Table table(s.region);
+  return analysis::lyapunov_spectrum(table, dynamics::FreeFlight{},
+                                     dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 11), particles,
+                                     collisions, threads);
+}
+
+}  // namespace
+
+TEST_CASE("the tangent map equals finite differences: free flights on segments, arcs and elliptic arcs") {
+  for (const char* name : {"sinai.yaml", "clover.yaml", "elliptic-stadium.yaml", "sinai-ellipse.yaml", "mushroom.yaml"}) {
+    INFO(name);
+    const auto sh = bundled_shape(name);
+    const dynamics::Table table(sh.region);
+    const auto initial = dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 5);
+    for (std::size_t i = 0; i < 4; ++i) check_against_finite_differences(table, dynamics::FreeFlight{}, initial(i), 4);
+  }
+}
+
+TEST_CASE("the tangent map equals finite differences under the periodic drive and a static force") {
+  const auto scene = bundled_scene("sinai-ellipse-driven.yaml", 4);
+  const dynamics::Table table(scene.shape.region);
+  // A slow drive, so that the force changes the flights between collisions visibly.
+  const dynamics::PeriodicDriveFlight drive{geometry::Vec2(3, 1), 7.0, 0.3};
+  const dynamics::ConstantForceFlight gravity{geometry::Vec2(0.4, -2)};
+  const auto initial = dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 9);
+  for (std::size_t i = 0; i < 4; ++i) {
+    check_against_finite_differences(table, drive, drive.start(initial(i)), 4);
+    check_against_finite_differences(table, gravity, initial(i), 4);
+  }
+}
+
+TEST_CASE("integrable tables: the maximal exponent vanishes, decreasing with the trajectory's length") {
+  const double chaotic = free_spectrum("stadium.yaml", 8, 4000).per_time[0].mean;
+  for (const char* name : {"circle.yaml", "square.yaml", "ellipse.yaml"}) {
+    INFO(name);
+    const auto short_run = free_spectrum(name, 8, 1000), long_run = free_spectrum(name, 8, 16000);
+    // Perturbations grow linearly: the estimate falls like log(T)/T.
+    CHECK(long_run.per_time[0].mean < 0.5 * short_run.per_time[0].mean);
+    CHECK(long_run.per_time[0].mean < 0.01 * chaotic);
+  }
+}
+
+TEST_CASE("the spectrum comes in conjugate pairs that sum to zero") {
+  for (const char* name : {"stadium.yaml", "clover.yaml", "sinai-ellipse.yaml"}) {
+    INFO(name);
+    const auto r = free_spectrum(name, 6, 20000);
+    const double top = r.per_time[0].mean;
+    CHECK(top > 0.1);
+    for (std::size_t i = 0; i < r.trajectories.size(); ++i) {
+      const auto& l = r.trajectories[i].log_stretch;
+      CHECK(std::abs(l[0] + l[1] + l[2] + l[3]) < 1e-8 * std::abs(l[0]));  // det J = 1
+      CHECK(std::abs(r.exponent(i, 0) + r.exponent(i, 3)) < 0.01 * top);
+      CHECK(std::abs(r.exponent(i, 1) + r.exponent(i, 2)) < 0.01 * top);
+      CHECK(std::abs(r.exponent(i, 1)) < 0.01 * top);  // the flow's direction and the energy
+    }
+  }
+  // Under the drive the energy changes, but the flow stays Hamiltonian: pairs again.
+  const auto scene = bundled_scene("clover-driven.yaml", 4);
+  const dynamics::Table table(scene.shape.region);
+  const dynamics::PeriodicDriveFlight flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
+  const auto r = analysis::lyapunov_spectrum(table, flight, dynamics::initial_states(scene, table, flight), 4, 20000, 2);
+  for (std::size_t i = 0; i < r.trajectories.size(); ++i) {
+    CHECK(std::abs(r.exponent(i, 0) + r.exponent(i, 3)) < 0.01 * r.exponent(i, 0));
+    CHECK(std::abs(r.exponent(i, 1) + r.exponent(i, 2)) < 0.01 * r.exponent(i, 0));
+  }
+}
+
+TEST_CASE("Sinai table: the maximal exponent equals the wave-front curvature recursion's, within 3 SE") {
+  // An independent method on the same trajectories: B, the curvature of the unstable wave front
+  // just after a bounce, grows the front by |1 + τB| over a flight τ (speed 1), and becomes
+  // B/(1 + τB) there; a bounce adds 2K/cos φ, K the wall's dispersing curvature (−κ).
+  const auto sh = bundled_shape("sinai.yaml");
+  const dynamics::Table table(sh.region);
+  const auto initial = dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 11);
+  const std::size_t particles = 24, collisions = 20000;
+  std::vector<double> recursion;
+  for (std::size_t i = 0; i < particles; ++i) {
+    const auto s0 = initial(i);
+    double B = 0, sum = 0, t = s0.t, t_end = s0.t;
+    dynamics::evolve(table, dynamics::FreeFlight{}, s0, collisions, [&](const auto& hit, const auto&) {
+      const double tau = hit.t - t;
+      sum += std::log(std::abs(1 + tau * B));
+      B = B / (1 + tau * B);
+      const double cos_phi = hit.state.v.dot(hit.normal) / hit.state.v.norm();
+      B += -2 * table.curvature_at(hit.wall, hit.point) / cos_phi;
+      t = t_end = hit.t;
+    });
+    recursion.push_back(sum / (t_end - s0.t));
+  }
+  const auto expected = analysis::sample_moments(recursion);
+  const auto r = analysis::lyapunov_spectrum(table, dynamics::FreeFlight{}, initial, particles, collisions, 2);
+  INFO("tangent dynamics " << r.per_time[0].mean << " ± " << r.per_time[0].se << ", recursion " << expected.mean
+                           << " ± " << expected.se_mean);
+  CHECK(r.per_time[0].se > 0);
+  CHECK(std::abs(r.per_time[0].mean - expected.mean) < 3 * r.per_time[0].se);
+}
+
+TEST_CASE("the exponents are identical for any thread count") {
+  const auto one = free_spectrum("clover.yaml", 5, 2000, 1), two = free_spectrum("clover.yaml", 5, 2000, 2);
+  for (std::size_t i = 0; i < 5; ++i) CHECK(one.trajectories[i].log_stretch == two.trajectories[i].log_stretch);
+}
+
+TEST_CASE("billiard lyapunov --json: its keys, and a scene's flight") {
+  auto r = billiard("lyapunov shapes/sinai.yaml --particles 4 --collisions 3000 --json --quiet");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  auto j = nlohmann::json::parse(r.output);
+  for (const char* key : {"lyapunov", "lyapunov_se", "lyapunov_per_collision", "lyapunov_per_collision_se"})
+    CHECK(j[key].is_number());
+  CHECK(j["spectrum"].size() == 4);
+  CHECK(j["speed"] == 1.0);
+  // λ per unit time = λ per collision / mean free time.
+  CHECK(j["lyapunov"].get<double>() ==
+        Approx(j["lyapunov_per_collision"].get<double>() / j["mean_free_time"].get<double>()).epsilon(0.05));
+  r = billiard("lyapunov scenes/clover-driven.yaml --particles 3 --collisions 2000 --json --quiet");
+  REQUIRE(r.status == 0);
+  j = nlohmann::json::parse(r.output);
+  CHECK(j["force"] == "periodic");
+  CHECK(j["lyapunov"].get<double>() > 0);
+  r = billiard("lyapunov scenes/clover-field.yaml --particles 3 --collisions 10 --quiet");
+  CHECK(r.status == 2);
+  CHECK(r.output.find("billiard: error: scenes/clover-field.yaml: Lyapunov exponents are computed for") != std::string::npos);
+}
