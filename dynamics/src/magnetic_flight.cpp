@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <tuple>
 #include <stdexcept>
 #include <utility>
 
@@ -19,15 +20,24 @@ namespace billiards::dynamics {
 
 namespace {
 
+/// Position and velocity after turning by φ = 2ψ on the circle of angular speed k, from
+/// sin ψ and cos ψ: sin φ = 2 sin ψ cos ψ, 1 − cos φ = 2 sin²ψ (accurate at small φ).
+template <class Real>
+std::pair<Vec2T<Real>, Vec2T<Real>> turned(const BasicState<Real>& s, const Real& k, const Vec2T<Real>& w0,
+                                           const Real& sn, const Real& cs) {
+  const Real sin_phi = 2 * sn * cs, one_minus_cos = 2 * sn * sn, cos_phi = (cs - sn) * (cs + sn);
+  return {s.x + (sin_phi / k) * s.v + (one_minus_cos / k) * w0, cos_phi * s.v + sin_phi * w0};
+}
+
 /// Position and velocity τ after s on the circle of angular speed k, w0 = v0 turned towards
-/// the centre: 1 − cos kτ as 2 sin²(kτ/2), which keeps its accuracy for small kτ.
+/// the centre.
 template <class Real>
 std::pair<Vec2T<Real>, Vec2T<Real>> gyrate(const BasicState<Real>& s, const Real& k, const Vec2T<Real>& w0,
                                            const Real& tau) {
   using std::cos;
   using std::sin;
-  const Real phi = k * tau, sn = sin(phi), h = sin(phi / 2), cs = cos(phi);
-  return {s.x + (sn / k) * s.v + (2 * h * h / k) * w0, cs * s.v + sn * w0};
+  const Real half = k * tau / 2;
+  return turned(s, k, w0, sin(half), cos(half));
 }
 
 /// v turned by a quarter turn in the sense of the gyration (sign of Ω > 0: clockwise).
@@ -44,7 +54,33 @@ Real exit_at(const Gyration<Real>& g, const Wall& w, const Vec2T<Real>& u, const
   // (The span first: it rules out most crossings without an arctangent.)
   if ((u.x() == 0 && u.y() == 0) || !w.within_span(g.position_at_half_angle(u))) return never;
   const Real t = g.s.t + 2 * Real(atan2(u.y(), u.x())) / g.k;
-  return t > t_end ? Real(never) : t;
+  if (t > t_end) return never;
+  g.found_t = t;
+  g.found_u = u;
+  return t;
+}
+
+/// The first outward zero of F0 + B1 sin φ + B2 (1 − cos φ) over one turn φ ∈ [0, 2π), as the
+/// half angle ψ = φ/2 ∈ [0, π) in the form u ∝ (cos ψ, sin ψ) (u = 0: none).  `near` is the
+/// rounding of F0: within it beyond the wall (0 ≤ F0 ≤ near) and moving out, the crossing is
+/// now (u = (1, 0)), as for every flight (flight.hpp).  A touch (a double root) is no crossing.
+/// `D` is B1² − F0 (F0 + 2 B2), the discriminant, computed by the caller in its accurate form.
+template <class Real>
+Vec2T<Real> outward_half_angle(const Real& F0, const Real& B1, const Real& B2, const Real& D, const Real& near) {
+  using V = Vec2T<Real>;
+  using std::sqrt;
+  // Beyond the wall by rounding and moving out (or along it and curving out): now.
+  if (F0 >= 0 && F0 <= near && (B1 > 0 || (B1 == 0 && B2 > 0))) return V(1, 0);
+  if (!(D > 0)) return V::Zero();  // a miss or a touch
+  // With c = cos ψ, s = sin ψ: F = F0 c² + 2 B1 s c + (F0 + 2 B2) s², zero where
+  // tan ψ = (−B1 ± √D)/(F0 + 2 B2); F increases through the "+" root (its derivative in tan ψ
+  // is 2√D there).  That root as a direction, in whichever of its two forms does not cancel:
+  // from a wall just bounced off (F0 ≈ 0, B1 < 0) it is the far end of the chord, not the
+  // start point.
+  const Real root = sqrt(D);
+  V u = B1 <= 0 ? V(F0 + 2 * B2, root - B1) : V(-B1 - root, F0);
+  if (u.y() < 0 || (u.y() == 0 && u.x() < 0)) u = -u;  // ψ ∈ [0, π): one turn from now
+  return u;
 }
 
 /// The certified scan's sample of a conic wall (an ellipse, or a circle: L = I/r): its gap
@@ -67,39 +103,41 @@ Real scan_tolerance(const Real& slack, const Real& scale, const Real& V, const R
 }  // namespace
 
 template <class Real>
-Vec2T<Real> outward_half_angle(const Real& F0, const Real& B1, const Real& B2, const Real& D, const Real& near) {
-  using V = Vec2T<Real>;
-  using std::sqrt;
-  // Beyond the wall by rounding and moving out (or along it and curving out): now.
-  if (F0 >= 0 && F0 <= near && (B1 > 0 || (B1 == 0 && B2 > 0))) return V(1, 0);
-  if (!(D > 0)) return V::Zero();  // a miss or a touch
-  // With c = cos ψ, s = sin ψ: F = F0 c² + 2 B1 s c + (F0 + 2 B2) s², zero where
-  // tan ψ = (−B1 ± √D)/(F0 + 2 B2); F increases through the "+" root (its derivative in tan ψ
-  // is 2√D there).  That root as a direction, in whichever of its two forms does not cancel:
-  // from a wall just bounced off (F0 ≈ 0, B1 < 0) it is the far end of the chord, not the
-  // start point.
-  const Real root = sqrt(D);
-  V u = B1 <= 0 ? V(F0 + 2 * B2, root - B1) : V(-B1 - root, F0);
-  if (u.y() < 0 || (u.y() == 0 && u.x() < 0)) u = -u;  // ψ ∈ [0, π): one turn from now
-  return u;
-}
-
-template <class Real>
 Gyration<Real>::Gyration(const BasicMagneticFlight<Real>& flight, const BasicState<Real>& state)
     : s(state) {
   using std::abs;
   using std::sqrt;
   k = abs(flight.omega_c);
+  inv_k = 1 / k;
   w0 = towards_center(state.v, flight.omega_c);
   speed = sqrt(state.v.squaredNorm());
-  center = state.x + w0 / k;
-  radius = speed / k;
+  center = state.x + w0 * inv_k;
+  radius = speed * inv_k;
 }
 
 template <class Real>
 auto Gyration<Real>::position_at_half_angle(const V& u) const -> V {
-  const Real n2 = u.squaredNorm(), sc = u.x() * u.y() / n2, ss = u.y() * u.y() / n2;
-  return s.x + (2 / k) * (sc * s.v + ss * w0);
+  const Real scale = 2 * inv_k / u.squaredNorm();  // (2/k) / |u|², with sin ψ cos ψ = u_x u_y/|u|²
+  return s.x + scale * (u.x() * u.y() * s.v + u.y() * u.y() * w0);
+}
+
+template <class Real>
+auto Gyration<Real>::first_hit(const BasicTable<Real>& table, const Real& t_end) const
+    -> FlightHit<BasicMagneticFlight<Real>> {
+  using std::sqrt;
+  FlightHit<BasicMagneticFlight<Real>> hit;
+  hit.t = t_end;
+  detail::try_every_wall(table, *this, hit);
+  if (!hit.found()) return hit;
+  hit.state = s;
+  hit.state.t = hit.t;
+  if (hit.t == found_t) {
+    const Real norm = sqrt(found_u.squaredNorm());
+    std::tie(hit.state.x, hit.state.v) = turned(s, k, w0, Real(found_u.y() / norm), Real(found_u.x() / norm));
+  } else {  // (an elliptic arc's scan)
+    std::tie(hit.state.x, hit.state.v) = gyrate(s, k, w0, Real(hit.t - s.t));
+  }
+  return hit;
 }
 
 template <class Real>
@@ -305,14 +343,12 @@ Real BasicMagneticFlight<Real>::period() const {
   return boost::math::constants::two_pi<Real>() / abs(omega_c);
 }
 
-#define BILLIARDS_MAGNETIC(Real)                                                                       \
-  template struct Gyration<Real>;                                                                      \
-  template struct BasicMagneticFlight<Real>;                                                           \
-  template Vec2T<Real> outward_half_angle(const Real&, const Real&, const Real&, const Real&, const Real&);
-BILLIARDS_MAGNETIC(double)
-BILLIARDS_MAGNETIC(long double)
-BILLIARDS_MAGNETIC(Reference)
-#undef BILLIARDS_MAGNETIC
+template struct Gyration<double>;
+template struct Gyration<long double>;
+template struct Gyration<Reference>;
+template struct BasicMagneticFlight<double>;
+template struct BasicMagneticFlight<long double>;
+template struct BasicMagneticFlight<Reference>;
 template struct BasicMagneticDriveFlight<double>;
 template struct BasicMagneticDriveFlight<long double>;
 

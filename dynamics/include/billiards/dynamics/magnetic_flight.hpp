@@ -17,6 +17,7 @@
 // the arc's affine map, so the mapped flight is not a magnetic flight).
 #pragma once
 
+#include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/flight.hpp"
 
 namespace billiards::dynamics {
@@ -32,6 +33,7 @@ struct Gyration {
   using V = Vec2T<Real>;
   const BasicState<Real>& s;
   Real k;         // |Ω|
+  Real inv_k;     // 1/|Ω|
   V w0;           // v0 turned by a quarter turn towards the centre
   Real speed;     // |v0|
   V center;       // of gyration, x0 + w0/k
@@ -41,8 +43,14 @@ struct Gyration {
   Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const;
+  /// The first wall of the table the orbit leaves through before t_end, with the state there
+  /// from the crossing's half angle where a closed form found it (no sine or cosine).
+  FlightHit<BasicMagneticFlight<Real>> first_hit(const BasicTable<Real>& table, const Real& t_end) const;
   /// Position after turning by φ = 2ψ, from (cos ψ, sin ψ) ∝ u (no sine or cosine).
   V position_at_half_angle(const V& u) const;
+  /// The last crossing a closed form returned (its time and half angle), for first_hit.
+  mutable Real found_t = never;
+  mutable V found_u = V::Zero();
   /// Can the orbit meet the wall's bounding disk before t_end?
   template <class Wall>
   bool may_reach(const Wall& w, const Real& t_end) const;
@@ -102,13 +110,5 @@ struct BasicMagneticDriveFlight {
   Real speed_bound(const State& s, const Real& tau) const;
 };
 using MagneticDriveFlight = BasicMagneticDriveFlight<double>;
-
-/// The first outward zero of F0 + B1 sin φ + B2 (1 − cos φ) over one turn φ ∈ [0, 2π), as the
-/// half angle ψ = φ/2 ∈ [0, π) in the form u ∝ (cos ψ, sin ψ) (u = 0: none).  `near` is the
-/// rounding of F0: within it beyond the wall (0 ≤ F0 ≤ near) and moving out, the crossing is
-/// now (u = (1, 0)), as for every flight (flight.hpp).  A touch (a double root) is no crossing.
-/// `D` is B1² − F0 (F0 + 2 B2), the discriminant, computed by the caller in its accurate form.
-template <class Real>
-Vec2T<Real> outward_half_angle(const Real& F0, const Real& B1, const Real& B2, const Real& D, const Real& near);
 
 }  // namespace billiards::dynamics
