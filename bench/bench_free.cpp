@@ -6,11 +6,11 @@
 // Usage: bench_free [collisions per shape, default 2e7]
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/geometry.hpp"
+#include "throughput.hpp"
 
 #include <CGAL/Exact_circular_kernel_2.h>
 #include <fmt/core.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 
@@ -73,22 +73,6 @@ struct CgalExactFlight : dynamics::FreeFlight {
   }
 };
 
-/// Collisions per second on one thread (particles interleaved as in ensembles), and escapes.
-template <class Flight>
-std::pair<double, std::uint64_t> throughput(const geometry::Region2& region, double collisions) {
-  const dynamics::Table table(region);
-  const Flight flight;
-  dynamics::RunOptions opt;
-  const std::size_t particles = 64;
-  // At speed 1 a particle meets a wall every λ on average.
-  opt.record_times = {collisions / double(particles) * geometry::mean_free_path(geometry::measures_of(region))};
-  const auto initial = dynamics::microcanonical(table, flight, 1.0, 1);
-  const auto start = std::chrono::steady_clock::now();
-  const auto res = dynamics::run_ensemble(table, flight, initial, opt, particles, 1);
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return {double(res.collisions()) / seconds, res.escapes()};
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -97,15 +81,15 @@ int main(int argc, char** argv) {
              "textbook esc.");
   for (const char* name : {"clover", "stadium", "sinai", "mushroom", "wavy-1200", "square", "circle"}) {
     const auto shape = geometry::load_shape(fmt::format("{}/shapes/{}.yaml", BILLIARDS_SOURCE_DIR, name));
-    const auto [fast, fast_escapes] = throughput<dynamics::FreeFlight>(shape.region, n);
-    const auto [slow, slow_escapes] = throughput<TextbookFlight>(shape.region, n);
+    const auto [fast, fast_escapes] = bench::throughput(shape.region, dynamics::FreeFlight{}, n);
+    const auto [slow, slow_escapes] = bench::throughput(shape.region, TextbookFlight{}, n);
     if (fast_escapes) fmt::print("ERROR: {} escapes with the toolkit's kernels on {}\n", fast_escapes, name);
     fmt::print("{:<10} {:>14.2f} {:>14.2f} {:>8.2f} {:>14}\n", name, fast / 1e6, slow / 1e6, fast / slow,
                slow_escapes);
   }
   const auto clover = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/clover.yaml");
-  const auto [exact, exact_escapes] = throughput<CgalExactFlight>(clover.region, n / 200);
-  const auto [fast, fast_escapes] = throughput<dynamics::FreeFlight>(clover.region, n);
+  const auto [exact, exact_escapes] = bench::throughput(clover.region, CgalExactFlight{}, n / 200);
+  const auto [fast, fast_escapes] = bench::throughput(clover.region, dynamics::FreeFlight{}, n);
   fmt::print("clover, CGAL exact circular kernel: {:.3f} M/s; toolkit {:.2f} M/s; ratio {:.0f}\n", exact / 1e6,
              fast / 1e6, fast / exact);
   return 0;

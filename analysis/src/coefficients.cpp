@@ -3,6 +3,7 @@
 #include "billiards/analysis/potential.hpp"
 #include "billiards/analysis/wall.hpp"
 #include "billiards/dynamics/scene.hpp"
+#include "billiards/dynamics/table.hpp"
 #include "billiards/geometry/input_error.hpp"
 
 #include <fmt/core.h>
@@ -159,6 +160,11 @@ void to_json(nlohmann::json& j, const Coefficients& c) {
        {"validity_force_ratio", c.force_ratio},
        {"validity_length_ratio", c.length_ratio},
        {"warnings", c.warnings}};
+  if (c.cyclotron_radius > 0) {
+    j["cyclotron_radius"] = c.cyclotron_radius;
+    j["inradius"] = c.inradius;
+    j["omega_over_cyclotron"] = c.drive_over_cyclotron;
+  }
 }
 
 namespace {
@@ -179,6 +185,49 @@ Potential potential_of(const dynamics::Scene& scene) {
   return [p](const geometry::Vec2& x) { return p->U(x); };
 }
 
+/// The radius of the largest disk in the region, from below: the best of a 64 × 64 grid of
+/// centres, refined by a pattern search (steps halving down to 1e-4 of the table's size).
+double inradius(const geometry::Region2& region) {
+  const dynamics::Table table(region);
+  const geometry::Vec2 lo = table.lo(), size = table.hi() - table.lo();
+  auto radius = [&](const geometry::Vec2& x) { return table.contains(x, 0) ? table.wall_distance(x) : 0.0; };
+  geometry::Vec2 best = lo + size / 2;
+  double r = radius(best);
+  constexpr int k = 64;
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const geometry::Vec2 x = lo + geometry::Vec2(size.x() * (i + 0.5) / k, size.y() * (j + 0.5) / k);
+      if (const double d = radius(x); d > r) r = d, best = x;
+    }
+  for (double step = size.maxCoeff() / k; step > 1e-4 * size.maxCoeff(); step /= 2)
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (const geometry::Vec2 dx : {geometry::Vec2(step, 0), geometry::Vec2(-step, 0), geometry::Vec2(0, step), geometry::Vec2(0, -step)})
+        if (const double d = radius(best + dx); d > r) r = d, best += dx, moved = true;
+    }
+  return r;
+}
+
+/// The magnetic field's validity statement: Santaló's formula (the collision rate, hence λ,
+/// γ_E, the wall integral's weight) holds for the magnetic flow, and Σ(E) does not depend on B;
+/// but orbits with r_c below the inradius can circle without meeting the wall, and the
+/// averaging over the drive's period needs ω ≫ |Ω|.
+void check_magnetic(Coefficients& c, const dynamics::Scene& scene) {
+  const double cyclotron = std::abs(scene.cyclotron_frequency());
+  c.cyclotron_radius = c.speed / cyclotron;
+  c.inradius = inradius(scene.shape.region);
+  c.drive_over_cyclotron = scene.force.omega / cyclotron;
+  if (c.cyclotron_radius < c.inradius)
+    c.warnings.push_back(fmt::format("the cyclotron radius r_c = {:.3g} is below the table's inradius {:.3g}: some "
+                                     "orbits circle without ever meeting the wall, and those particles never diffuse "
+                                     "(the ensemble's mean collision rate is still v/lambda)",
+                                     c.cyclotron_radius, c.inradius));
+  if (c.drive_over_cyclotron * validity_threshold < 1)
+    c.warnings.push_back(fmt::format("omega/|Omega| = {:.3g} is not large: the drive must be fast against the "
+                                     "cyclotron frequency Omega = qB/m for the theory's averaging",
+                                     c.drive_over_cyclotron));
+}
+
 }  // namespace
 
 std::optional<Coefficients> prediction_of(const dynamics::Scene& scene) {
@@ -190,7 +239,9 @@ std::optional<Coefficients> prediction_of(const dynamics::Scene& scene) {
     drive.F = scene.force.amplitude;
     drive.omega = scene.force.omega;
     drive.mass = scene.mass;
-    return coefficients(scene.measures(), drive, scene.energy);
+    auto c = coefficients(scene.measures(), drive, scene.energy);
+    if (scene.magnetic()) check_magnetic(c, scene);
+    return c;
   }
   // A field amplitude or a potential: quadrature along the wall (2-D scenes only).
   const auto& region = scene.shape.region;

@@ -86,6 +86,20 @@ Force read_force(const SceneReader& r, const Expressions& expr, const YAML::Node
   return f;
 }
 
+/// magnetic: {B: value}, the field perpendicular to the plane; in 3-D B is a vector (refused
+/// until 3-D flights have a field).
+double read_magnetic(const SceneReader& r, const YAML::Node& n, int dimension) {
+  r.expect_keys(n, {"B"}, "'magnetic'");
+  const YAML::Node b = r.required(n, "B", "'magnetic'");
+  if (dimension == 2) {
+    if (!b.IsScalar()) r.fail(b, "in 2-D the magnetic field is perpendicular to the plane: B is a number, not a vector");
+    return r.number(b);
+  }
+  if (b.IsScalar()) r.fail(b, "in 3-D the magnetic field is a vector [Bx, By, Bz], not a number");
+  r.vector(b, 3);
+  r.fail(n, "a magnetic field is implemented in 2-D only");
+}
+
 /// potential: {expression: U, gradient: [dU/dx, dU/dy]}, the gradient optional: when it is
 /// missing it is the exact derivative of U; when given, it must agree with that derivative on
 /// a grid over the table's bounding box (so a typo cannot make a non-conservative force).
@@ -227,7 +241,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   Expressions expr;
   const SceneReader r(path, expr);
   if (!doc.IsMap()) throw InputError(path, 1, "a scene file is a YAML mapping");
-  r.expect_keys(doc, {"shape", "set", "parameters", "mass", "initial", "force", "potential", "integrator", "run", "output"},
+  r.expect_keys(doc, {"shape", "set", "parameters", "mass", "initial", "force", "potential", "integrator", "run", "output",
+                     "magnetic", "charge"},
                 "a scene file");
 
   // Scene parameters take the --set values that name them; the rest go to the shape, after
@@ -258,6 +273,18 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   if (const YAML::Node u = doc["potential"]) {
     if (scene.dimension == 3) r.fail(u, "a potential is implemented in 2-D only");
     scene.potential = read_potential(r, expr, u, Table(scene.shape.region));
+  }
+  if (const YAML::Node m = doc["magnetic"]) {
+    scene.magnetic_field = read_magnetic(r, m, scene.dimension);
+    if (doc["charge"]) scene.charge = r.number(doc["charge"]);
+    if (scene.magnetic() && scene.charge == 0)
+      r.fail(doc["charge"], "the charge must not be 0 in a magnetic field (with q = 0 the field does nothing: remove it)");
+    if (scene.magnetic() && (scene.potential || scene.force.kind == Force::Kind::field || scene.force.quivering_walls))
+      r.fail(m, fmt::format("a magnetic field is implemented with a uniform force only (constant or periodic, lab "
+                            "picture), not with {}",
+                            scene.potential ? "a potential" : scene.force.quivering_walls ? "quivering walls" : "a field force"));
+  } else if (const YAML::Node q = doc["charge"]) {
+    r.fail(q, "'charge' is the charge in a magnetic field: the scene has no 'magnetic'");
   }
   if (const YAML::Node integ = doc["integrator"]) {
     r.expect_keys(integ, {"tolerance"}, "'integrator'");

@@ -117,7 +117,7 @@ def test_plots_draw_the_objects(source):
     sphere = bk.load_shape(source / "shapes" / "3d" / "sinai3.yaml")
     assert sphere._repr_png_()[:4] == b"\x89PNG"
 
-@pytest.mark.parametrize("script", ["own_table.py", "driven_ensemble.py", "paper_fig4.py"])
+@pytest.mark.parametrize("script", ["own_table.py", "driven_ensemble.py", "paper_fig4.py", "magnetic_trajectory.py"])
 def test_examples_run(source, tmp_path, script):
     done = subprocess.run([sys.executable, str(source / "examples" / script), "--quick", "--output",
                            str(tmp_path / "out.png")], capture_output=True, text=True, cwd=tmp_path)

@@ -48,12 +48,16 @@ struct Coefficients {
   // is the SHORTEST length of the problem: a wall feature, or a scale on which F varies, that is
   // shorter than λ makes the true condition stricter than this ratio.
   double length_ratio = 0;
+  // In a magnetic field (0 without one): the cyclotron radius r_c = m v_E/|qB|, the table's
+  // inradius (every orbit meets the wall when r_c is at least that), and ω/|Ω| (must be ≫ 1).
+  double cyclotron_radius = 0, inradius = 0, drive_over_cyclotron = 0;
   std::vector<std::string> warnings; // one per ratio above validity_threshold
 };
 
 /// nlohmann::json conversion (`nlohmann::json j = c;`), keys: dimension, E, v_E, V, S,
 /// mean_free_path, wall_integral, wall_integral_error, Sigma, gamma_E, collision_rate, C, g1, g2,
-/// g1_error, g2_error, closed_form, validity_force_ratio, validity_length_ratio, warnings.
+/// g1_error, g2_error, closed_form, validity_force_ratio, validity_length_ratio, warnings; in a
+/// magnetic field also cyclotron_radius, inradius, omega_over_cyclotron.
 void to_json(nlohmann::json& j, const Coefficients& c);
 
 /// Validity ratios above this are reported as warnings.

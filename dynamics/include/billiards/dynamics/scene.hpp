@@ -55,6 +55,10 @@ struct Scene {
   std::string initial_csv;
   Force force;
   std::optional<Potential> potential;
+  /// A uniform magnetic field B perpendicular to the plane (2-D), acting on the charge `charge`;
+  /// none when absent or zero.
+  std::optional<double> magnetic_field;
+  double charge = 1;
   /// Relative tolerance of the integrator of flights in a general field (field_flight.hpp).
   double integrator_tolerance = 1e-10;
   std::size_t particles = 0;
@@ -69,6 +73,9 @@ struct Scene {
     return dimension == 3 ? shape3.parameters : shape.parameters;
   }
   geometry::Measures measures() const;
+  /// Is there a magnetic field?  Then Ω = qB/m is its signed cyclotron frequency.
+  bool magnetic() const { return magnetic_field && *magnetic_field != 0; }
+  double cyclotron_frequency() const { return charge * *magnetic_field / mass; }
 };
 
 /// Command-line overrides of a scene.

@@ -7,6 +7,7 @@
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/field_flight.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics/magnetic_flight.hpp"
 #include "billiards/dynamics/scene.hpp"
 #include "billiards/dynamics/table3.hpp"
 
@@ -31,6 +32,13 @@ auto with_flight(const Scene& scene, Run&& run) {
     return run(FieldFlight(scene.force, scene.potential, scene.mass, Table(scene.shape.region),
                            scene.integrator_tolerance));
   const Vec2 accel = scene.force.amplitude / scene.mass;
+  if (scene.magnetic()) {  // (the scene file refuses the rest)
+    const double omega_c = scene.cyclotron_frequency();
+    if (scene.force.kind == Force::Kind::constant) return run(MagneticDriveFlight{omega_c, accel});
+    if (scene.force.kind == Force::Kind::periodic)
+      return run(MagneticDriveFlight{omega_c, accel, scene.force.omega, scene.force.phase});
+    return run(MagneticFlight{omega_c});
+  }
   switch (scene.force.kind) {
     case Force::Kind::constant: return run(ConstantForceFlight{accel});
     case Force::Kind::periodic:

@@ -1,0 +1,30 @@
+// Magnetic-flight throughput: collisions per second on one core in a uniform field B
+// perpendicular to the plane (cyclotron arcs), beside the straight flight in the same run, per
+// table and cyclotron radius r_c (speed 1).
+// Usage: bench_magnetic [collisions per case, default 1e7]
+#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/magnetic_flight.hpp"
+#include "billiards/geometry.hpp"
+#include "throughput.hpp"
+
+#include <fmt/core.h>
+
+#include <cstdlib>
+
+using namespace billiards;
+
+int main(int argc, char** argv) {
+  const double n = argc > 1 ? std::atof(argv[1]) : 1e7;
+  fmt::print("{:<10} {:>6} {:>14} {:>14} {:>10} {:>8}\n", "shape", "r_c", "magnetic M/s", "straight M/s",
+             "ns/bounce", "escapes");
+  for (const char* name : {"clover", "stadium", "sinai"}) {
+    const auto region = geometry::load_shape(fmt::format("{}/shapes/{}.yaml", BILLIARDS_SOURCE_DIR, name)).region;
+    const auto [straight, straight_escapes] = bench::throughput(region, dynamics::FreeFlight{}, n);
+    for (const double rc : {10.0, 1.0, 0.3}) {
+      const auto [magnetic, escapes] = bench::throughput(region, dynamics::MagneticFlight{1 / rc}, n);
+      fmt::print("{:<10} {:>6} {:>14.2f} {:>14.2f} {:>10.1f} {:>8}\n", name, rc, magnetic / 1e6, straight / 1e6,
+                 1e9 / magnetic, escapes + straight_escapes);
+    }
+  }
+  return 0;
+}
