@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -207,6 +208,20 @@ TEST_CASE("invalid meshes are rejected with the reason") {
                 "not manifold");
   mesh_rejected("OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n", "not closed");
   mesh_rejected("garbage", "cannot read");
+  // Headers announcing more than the file holds are refused before anything is allocated for them.
+  mesh_rejected("OFF\n1000000000 2000000000 0\n0 0 0\n", "its header announces 1e+09 vertices and 2e+09 faces, more than its");
+  mesh_rejected("# a comment\nOFF 12 4 0\n0 0 0\n", "its header announces 12 vertices and 4 faces");
+  mesh_rejected("OFF\n" + cube_vertices + "3 0 1 2\n200000000000 0 1 2\n" + cube_faces.substr(16),
+                "face 1 announces 200000000000 vertices, more than its");
+  {
+    Folder stl;
+    std::string binary(84, '\0');
+    const std::uint32_t triangles = 1u << 30;
+    std::memcpy(binary.data() + 80, &triangles, 4);
+    stl.write("m.stl", binary + std::string(50, '\0'));
+    CHECK_THROWS_WITH(parse_shape3("dimension: 3\nboundary:\n  mesh: m.stl\n", (stl.dir / "s.yaml").string()),
+                      Catch::Contains("s.yaml:3: mesh ") && Catch::Contains("announces 1073741824 triangles, more than its 134 bytes"));
+  }
   Folder f;
   CHECK_THROWS_WITH(parse_shape3("dimension: 3\nboundary:\n  mesh: missing.off\n", (f.dir / "s.yaml").string()),
                     Catch::Contains("s.yaml:3: mesh ") && Catch::Contains("missing.off: cannot open"));

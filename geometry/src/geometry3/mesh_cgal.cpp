@@ -21,9 +21,16 @@
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <limits>
 #include <map>
+#include <optional>
+#include <string_view>
 
 namespace billiards::geometry3 {
 
@@ -144,6 +151,67 @@ TriangleMesh checked_mesh(const std::string& path, const std::vector<Point>& poi
   return out;
 }
 
+/// Why an OFF file announces more than its `size` bytes can hold, if it does: its header's
+/// vertex and face counts (≥ 5 bytes a vertex and 7 a face as text, "0 0 0" and "3 0 1 2" with
+/// separators) or a face's vertex count (≥ 2 bytes an index).  The header is the keyword (OFF,
+/// with CGAL's prefixes ST, C, N, 4, n), `#` comments, then the counts; files that do not
+/// parse so are left to CGAL's reader to refuse.
+std::optional<std::string> off_counts_beyond_size(std::istream& in, double size) {
+  std::string token;
+  const auto next = [&]() -> bool {
+    while (in >> token) {
+      if (token[0] != '#') return true;
+      in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    }
+    return false;
+  };
+  const auto number = [&](double& x) {
+    if (!next()) return false;
+    char* end = nullptr;
+    x = std::strtod(token.c_str(), &end);
+    return *end == '\0';
+  };
+  if (!next() || token.find("OFF") == std::string::npos) return std::nullopt;
+  if (token.find('n') != std::string::npos && !next()) return std::nullopt;  // nOFF: the dimension
+  if (in >> std::ws && in.peek() == 'B') return std::nullopt;                // OFF BINARY: sizes fixed
+  double vertices, faces, edges;
+  if (!number(vertices) || !number(faces)) return std::nullopt;
+  if (!(vertices >= 0 && faces >= 0 && 5 * vertices + 7 * faces <= size))
+    return fmt::format("its header announces {:g} vertices and {:g} faces, more than its {:g} bytes can hold", vertices,
+                       faces, size);
+  if (!number(edges)) return std::nullopt;
+  std::string line;
+  for (double v = 0; v < vertices && std::getline(in >> std::ws, line);)
+    if (line[0] != '#') ++v;
+  for (double f = 0; f < faces && next(); ++f) {
+    in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+    const double corners = std::strtod(token.c_str(), nullptr);
+    if (!(2 * corners <= size))
+      return fmt::format("face {:g} announces {} vertices, more than its {:g} bytes can hold", f, token, size);
+  }
+  return std::nullopt;
+}
+
+/// Refuses a file whose counts announce more vertices, faces or triangles than its size can
+/// hold (OFF: above; binary STL: 50 bytes a triangle): CGAL's readers reserve what the counts
+/// say before reading.
+std::optional<std::string> counts_beyond_size(const std::string& path, const std::string& ext) {
+  const double size = double(std::filesystem::file_size(path));
+  std::ifstream in(path, std::ios::binary);
+  if (ext == ".off") return off_counts_beyond_size(in, size);
+  if (ext == ".stl" && size >= 84) {
+    char head[84];
+    in.read(head, 84);
+    if (std::string_view(head, 5) != "solid") {  // binary: a count of triangles at byte 80
+      std::uint32_t n;
+      std::memcpy(&n, head + 80, 4);
+      if (84 + 50 * double(n) > size)
+        return fmt::format("its binary header announces {} triangles, more than its {:g} bytes can hold", n, size);
+    }
+  }
+  return std::nullopt;
+}
+
 TriangleMesh read_mesh(const std::string& path, const SourceRef& where) {
   const auto fail = [&](const std::string& msg) -> TriangleMesh {
     throw InputError(where.file, where.line, "mesh " + path + ": " + msg);
@@ -151,6 +219,7 @@ TriangleMesh read_mesh(const std::string& path, const SourceRef& where) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext != ".off" && ext != ".obj" && ext != ".stl") return fail("expected a .off, .obj or .stl file");
   if (!std::filesystem::is_regular_file(path)) return fail("cannot open the file");
+  if (const auto why = counts_beyond_size(path, ext)) return fail(*why);
   std::vector<Point> points;
   Polygons polygons;
   bool read = false;
