@@ -314,7 +314,7 @@ Shape parse_shape(const std::string& yaml_text, const std::string& name, const O
   Reader r(name, expr);
   if (!doc.IsMap()) throw InputError(name, 1, "a shape file is a YAML mapping");
   r.expect_keys(doc, {"name", "dimension", "parameters", "boundary", "holes", "exits"}, "a shape file");
-  if (doc["dimension"] && doc["dimension"].as<std::string>() != "2")
+  if (doc["dimension"] && !(doc["dimension"].IsScalar() && doc["dimension"].Scalar() == "2"))
     r.fail(doc["dimension"], "only dimension 2 is supported so far");
   if (const YAML::Node params = doc["parameters"]) r.define_parameters(params, overrides);
   if (const auto unknown = expr.unused(overrides); !unknown.empty())
