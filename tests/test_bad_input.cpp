@@ -103,6 +103,15 @@ TEST_CASE("record times always start at 0, so the measured changes are from the 
   CHECK(std::isfinite(j["mean_dE_deviation_se"].get<double>()));
 }
 
+TEST_CASE("--record replaces the file's record times before they are counted for an overridden --time") {
+  // The file's 2000 record times would be 20000 at --time 20, more than a run allows.
+  const auto dir = scratch("record-override");
+  const auto r = run_scene(dir, driven_scene("  particles: 300\n  time: 2\n  record: {every: 0.001}\n"),
+                           "--time 20 --record 1 --no-csv");
+  REQUIRE(r.status == 0);
+  CHECK(read_json(dir / "out" / "summary.json")["record_times"] == nlohmann::json({0.0, 1.0, 20.0}));
+}
+
 TEST_CASE("command lines: unknown commands and options, empty sweeps, impossible outputs") {
   const auto dir = scratch("cli");
   const auto out = dir / "out";

@@ -304,8 +304,9 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   scene.time = ov.time ? *ov.time : r.positive(r.required(run, "time", "'run'"), "run.time");
   if (!(scene.time > 0)) throw InputError("--time", 0, "the run time must be positive");
   check_drive(scene, r, doc["force"], run["time"], ov);
-  scene.record_times = read_record(r, run["record"], scene.time);
-  if (ov.record) {
+  if (!ov.record) {
+    scene.record_times = read_record(r, run["record"], scene.time);
+  } else {  // (the file's record times are not read: for the overridden time they may be too many)
     scene.record_times = {0.0};
     for (double t : *ov.record) {
       if (!(t > scene.record_times.back())) throw InputError("--record", 0, "record times must be positive and increasing");
