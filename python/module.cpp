@@ -379,8 +379,8 @@ struct TraceOptions {
 };
 
 /// Follows the particle from `s` (dynamics::follow) with the GIL released.  Collecting: a dict of
-/// the rows and `escaped`.  Streaming (on_chunk): on_chunk(rows) with at most `chunk` rows at a
-/// time, none kept, and a dict of `collisions` and `escaped`.
+/// the rows, `escaped` and `trapped`.  Streaming (on_chunk): on_chunk(rows) with at most `chunk`
+/// rows at a time, none kept, and a dict of `collisions`, `escaped` and `trapped`.
 template <class Table, class Flight>
 py::dict trace(const Table& table, const Flight& flight, typename Flight::State s, const TraceOptions& opt) {
   if (!(opt.dt >= 0) || !std::isfinite(opt.dt)) throw py::value_error("dt must be a finite number >= 0");
@@ -412,9 +412,10 @@ py::dict trace(const Table& table, const Flight& flight, typename Flight::State 
   } catch (const PythonErrorPending&) {
     throw py::error_already_set();
   }
-  if (streaming) return py::dict("collisions"_a = made.collisions, "escaped"_a = made.escaped);
+  if (streaming) return py::dict("collisions"_a = made.collisions, "escaped"_a = made.escaped, "trapped"_a = made.trapped);
   auto out = rows.take();
   out["escaped"] = made.escaped;
+  out["trapped"] = made.trapped;
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include "billiards/analysis/statistics.hpp"
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/follow.hpp"
 #include "billiards/dynamics/magnetic_flight.hpp"
 #include "billiards/dynamics/random.hpp"
 #include "billiards/dynamics/scene.hpp"
@@ -96,6 +97,12 @@ TEST_CASE("far from the walls a charge circles forever, back at its start after 
     const auto half = flight.advance(s, flight.period() / 2);
     CHECK((half.v + s.v).norm() <= 1e-14);
     CHECK(std::abs((half.x - s.x).norm() - 2 * s.v.norm() / std::abs(omega)) <= 1e-12 * s.v.norm() / std::abs(omega));
+    // Followed with no end time, it is trapped (it circles inside), not escaped.
+    const auto made = dynamics::follow(table, flight, s, {10, dynamics::never}, dynamics::SampleClock{},
+                                       [](const auto&, const auto&) {}, [](const auto&) {});
+    CHECK(made.trapped);
+    CHECK_FALSE(made.escaped);
+    CHECK(made.collisions == 0);
   }
 }
 

@@ -40,7 +40,7 @@ def test_streamed_trajectory_equals_the_collected_one(source):
     whole = bk.trajectory(sc, collisions=5000, dt=0.01)
     chunks = []
     summary = bk.trajectory(sc, collisions=5000, dt=0.01, on_chunk=chunks.append, chunk=1000)
-    assert summary == {"collisions": 5000, "escaped": False}
+    assert summary == {"collisions": 5000, "escaped": False, "trapped": False}
     assert len(chunks) > 5 and all(len(c["times"]) <= 1000 and len(c["samples"]["times"]) <= 1000 for c in chunks)
     for key in ("times", "positions", "velocities", "walls"):
         assert np.concatenate([c[key] for c in chunks]).tobytes() == whole[key].tobytes(), key

@@ -44,13 +44,14 @@ struct FollowLimits {
 struct FollowResult {
   std::size_t collisions = 0;
   bool escaped = false;  // met no wall where it must, or stuck
+  bool trapped = false;  // on a closed orbit that meets no wall: it circles inside forever
 };
 
 /// Follows the particle from `s`: on_bounce(hit, state) with the state just after each bounce,
 /// on_sample(state) at each time of `clock` (the state before a bounce that falls on one), up to
 /// the limits.  A flight that meets no wall is an escape for a straight flight (searched with no
-/// horizon, as Trajectory does) or when there is no end time; a curved flight searched up to
-/// t_end meets none when it reaches t_end first.  A particle stuck in a corner is an escape too.  Energy-conserving flights restore the speed
+/// horizon, as Trajectory does) or when there is no end time (a closed orbit then is trapped,
+/// not escaped); a curved flight searched up to t_end meets none when it reaches t_end first.  A particle stuck in a corner is an escape too.  Energy-conserving flights restore the speed
 /// after every bounce, as `evolve` does, so both give the same states bit for bit.
 template <class TableT, class Flight, class OnBounce, class OnSample>
 FollowResult follow(const TableT& table, const Flight& flight, typename Flight::State s, const FollowLimits& limits,
@@ -62,7 +63,10 @@ FollowResult follow(const TableT& table, const Flight& flight, typename Flight::
   while (result.collisions < limits.collisions) {
     const auto hit = collision(table, flight, s, horizon);
     if (!hit.found() && horizon == never) {
-      result.escaped = true;
+      // A flight whose orbits close (`closes_orbits`, the magnetic one) and that meets no wall
+      // at all circles where it is, inside the table; any other leaves it.
+      if constexpr (requires { Flight::closes_orbits; }) result.trapped = true;
+      else result.escaped = true;
       break;
     }
     const bool ends = !hit.found() || hit.t > limits.t_end;

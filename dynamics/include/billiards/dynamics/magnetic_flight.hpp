@@ -62,6 +62,7 @@ struct BasicMagneticFlight {
   using Scalar = Real;
   using State = BasicState<Real>;
   static constexpr bool conserves_energy = true;
+  static constexpr bool closes_orbits = true;  // a cyclotron circle, which may meet no wall
 
   Real omega_c;  // Ω = qB/m
 
