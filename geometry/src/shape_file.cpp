@@ -325,8 +325,8 @@ Shape parse_shape(const std::string& yaml_text, const std::string& name, const O
   shape.description = leading_comment(yaml_text);
   Region2& region = shape.region;
   region.origin = {name, 1};
-  region.name = doc["name"] ? doc["name"].as<std::string>()
-                            : std::filesystem::path(name).stem().string();
+  if (doc["name"] && !doc["name"].IsScalar()) r.fail(doc["name"], "'name' is a single word or phrase");
+  region.name = doc["name"] ? doc["name"].Scalar() : std::filesystem::path(name).stem().string();
   const LoopReader loops(r);
   region.outer = loops.read(r.required(doc, "boundary", "a shape file"), false);
   if (const YAML::Node holes = doc["holes"]) {

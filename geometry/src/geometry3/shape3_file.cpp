@@ -116,7 +116,8 @@ Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const
   shape.description = leading_comment(yaml_text);
   Region3& region = shape.region;
   region.origin = {name, 1};
-  region.name = doc["name"] ? doc["name"].as<std::string>() : std::filesystem::path(name).stem().string();
+  if (doc["name"] && !doc["name"].IsScalar()) r.fail(doc["name"], "'name' is a single word or phrase");
+  region.name = doc["name"] ? doc["name"].Scalar() : std::filesystem::path(name).stem().string();
   const Reader3 reader(r, mesh_dir.empty() ? std::filesystem::path(name).parent_path() : std::filesystem::path(mesh_dir));
   region.outer = reader.boundary(r.required(doc, "boundary", "a shape file"));
   if (const YAML::Node holes = doc["holes"]) {
