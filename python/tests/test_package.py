@@ -25,7 +25,9 @@ def test_summary_equals_the_programs_summary_json(source, tmp_path):
     res = bk.run(bk.Scene(scene_file, particles=300, time=4), progress=False)
     for key in ("mean_dE", "var_dE", "se_mean_dE", "se_var_dE", "mean_dE_deviation_se", "var_dE_deviation_se",
                 "fp_mean_dE", "fp_var_dE", "mean_dE_fp_deviation_se", "var_dE_fp_deviation_se"):
-        assert getattr(res.summary, key) == cli[key], key
+        assert getattr(res.summary, key) == getattr(res, key) == cli[key], key
+    with pytest.raises(AttributeError, match="no_such_key"):
+        res.no_such_key
     for s, c in zip(res.summaries, cli["per_time"]):
         assert (s.t, s.var_dE, s.se_var_dE) == (c["t"], c["var_dE"], c["se_var_dE"])
     d = json.loads(json.dumps(res.to_dict()))  # plain data
