@@ -19,6 +19,7 @@ void add_bmap(CLI::App& app);
 void add_lyapunov(CLI::App& app);
 void add_chaos(CLI::App& app);
 void add_escape(CLI::App& app);
+void add_trajectory(CLI::App& app);
 
 /// The command line as typed, recorded in summary.json.
 void set_command_line(int argc, char** argv);

@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
   billiards::cli::add_lyapunov(app);
   billiards::cli::add_chaos(app);
   billiards::cli::add_escape(app);
+  billiards::cli::add_trajectory(app);
   bool speaks = true;  // in an MPI job only the first rank prints; all compute
   const auto error = [&](const std::string& message, int status) {
     if (speaks) fmt::print(stderr, "billiard: error: {}\n", message);

@@ -10,8 +10,6 @@
 
 namespace billiards::cli {
 
-namespace {
-/// A scene file names its shape (`shape:`); a shape file does not.
 bool is_scene_file(const std::string& path) {
   try {
     const YAML::Node doc = load_yaml(read_input_file(path, "a shape or scene file"), path);
@@ -20,7 +18,6 @@ bool is_scene_file(const std::string& path) {
     return false;  // (the shape reader reports what is wrong with it)
   }
 }
-}  // namespace
 
 void add_phase_space_options(CLI::App* cmd, PhaseSpaceArgs& args, std::size_t particles, std::size_t collisions) {
   args.particles = particles;

@@ -26,6 +26,10 @@ struct PhaseSpaceArgs {
   std::vector<std::string> set;
 };
 
+/// A scene file names its shape (`shape:`); anything else is read as a shape file, whose reader
+/// reports what is wrong with it.
+bool is_scene_file(const std::string& path);
+
 /// SHAPE|SCENE, --particles, --collisions, --seed, --threads, --quiet, --set.
 void add_phase_space_options(CLI::App* cmd, PhaseSpaceArgs& args, std::size_t particles, std::size_t collisions);
 

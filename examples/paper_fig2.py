@@ -3,7 +3,7 @@
 1000 for omega = 40 pi, histograms of a simulated ensemble against the Fokker-Planck prediction
 (analytic, eq. B4, and the numerical Chang-Cooper solution).
 
-    python3 examples/paper_fig2.py [--particles N] [--output fig2.png]
+    python3 examples/paper_fig2.py [--quick] [--particles N] [--output fig2.png]
 
 with billiardkit installed (docs/python.md), or PYTHONPATH=build/python.
 
@@ -31,7 +31,10 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--threads", type=int, default=0, help="0: all cores")
     parser.add_argument("--output", default="out/paper-fig2-python.png")
+    parser.add_argument("--quick", action="store_true", help="300 particles to t = 1, 2, 5 (seconds)")
     args = parser.parse_args()
+    if args.quick:
+        args.particles, args.times = 300, "1,2,5"
     times = [float(t) for t in args.times.split(",")]
 
     # The paper's setup is scenes/clover-driven.yaml (m = 1, E0 = 1/2, F = 10 along (1, 1)/sqrt 2);

@@ -18,11 +18,12 @@ from ._core import (InputError, Scene, Shape, Shape3, boundary_map, chaos, coeff
 from .plotting import plot_run, plot_shape, plot_trajectory
 from .results import RunResult, Summary, run
 from .scenes import load_scene, load_shape
-from .trajectories import Animation, animate, trajectory
+from .trajectories import Animation, TrajectoryChunks, animate, trajectory, trajectory_chunks
 
 __version__ = _core.__version__
 
 __all__ = ["Animation", "InputError", "RunResult", "Scene", "Shape", "Shape3", "Summary", "animate", "boundary_map",
            "chaos", "coefficients", "escape", "fokker_planck_cdf", "fokker_planck_eta", "fokker_planck_moments",
            "fokker_planck_numerical", "info", "load_scene", "load_shape", "lyapunov", "plot_run", "plot_shape",
-           "plot_trajectory", "run", "sample_moments", "trajectory", "__version__"]
+           "plot_trajectory", "run", "sample_moments", "trajectory", "trajectory_chunks", "TrajectoryChunks",
+           "__version__"]

@@ -47,7 +47,8 @@ class RunResult:
     """An ensemble run: record_times (m,), energies (N, m) (NaN after an escape), collisions (N,),
     escaped (N,), seconds, collisions_per_second, threads, prediction (the coefficients of
     `billiard coeffs`, or None), scene; summary (a Summary at the end time) and
-    summaries (one per record time).  res["energies"] is res.energies."""
+    summaries (one per record time).  res["energies"] is res.energies; the summary's values are
+    the run's attributes too (res.var_dE, res.se_var_dE, ...)."""
 
     _fields = ("record_times", "energies", "collisions", "escaped", "seconds", "collisions_per_second", "threads",
                "prediction")
@@ -61,6 +62,13 @@ class RunResult:
         for k, t in enumerate(self.record_times):
             self.summaries.append(Summary(t, E[:, k] - E[:, 0], self.prediction, scene.energy))
         self.summary = self.summaries[-1]
+
+    def __getattr__(self, name):
+        """The end time's summary as the run's own attributes: res.var_dE is res.summary.var_dE."""
+        summary = self.__dict__.get("summary")
+        if summary is None or name.startswith("_") or not hasattr(summary, name):
+            raise AttributeError(f"'RunResult' object has no attribute '{name}'")
+        return getattr(summary, name)
 
     def __getitem__(self, key):
         if key not in self._fields:

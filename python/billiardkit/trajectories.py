@@ -3,6 +3,8 @@ on request; and animations of a scene's particles (billiardkit.animate, as `bill
 import base64
 import math
 import os
+import queue
+import threading
 
 from . import _core
 from . import movie
@@ -10,6 +12,17 @@ from .results import _progress_bar
 
 # No limit on the number of collisions (the largest size_t).
 UNLIMITED = 2**64 - 1
+
+
+def _trajectory_arguments(scene_or_shape, collisions, time, dt, particle, seed, speed, chunk):
+    """_core.trajectory's keyword arguments: the defaults of `trajectory` filled in."""
+    if collisions is None:
+        collisions = 100 if time is None else UNLIMITED
+    kwargs = dict(collisions=collisions, particle=particle, dt=0.0 if dt is None else dt,
+                  time=math.inf if time is None else time, chunk=chunk)
+    if not isinstance(scene_or_shape, _core.Scene):
+        kwargs.update(seed=seed, speed=speed)
+    return kwargs
 
 
 def trajectory(scene_or_shape, *, collisions=None, time=None, dt=None, particle=0, seed=1, speed=1.0,
@@ -25,24 +38,155 @@ def trajectory(scene_or_shape, *, collisions=None, time=None, dt=None, particle=
 
     on_chunk: streams instead of collecting: on_chunk(rows) is called with a dict of the same keys
     for at most `chunk` bounces and samples at a time, nothing is kept (a run of 1e9 collisions
-    needs the memory of one chunk), and the result is {collisions, escaped}.
+    needs the memory of one chunk), and the result is {collisions, escaped}.  trajectory_chunks
+    streams the same chunks as an iterator.
     progress: True for a tqdm bar, False for none, None for a bar on a terminal or in Jupyter
     when tqdm is installed.  Ctrl-C raises KeyboardInterrupt within a tenth of a second."""
-    if collisions is None:
-        collisions = 100 if time is None else UNLIMITED
-    kwargs = dict(collisions=collisions, particle=particle, dt=0.0 if dt is None else dt,
-                  time=math.inf if time is None else time, on_chunk=on_chunk, chunk=chunk)
-    if not isinstance(scene_or_shape, _core.Scene):
-        kwargs.update(seed=seed, speed=speed)
+    kwargs = _trajectory_arguments(scene_or_shape, collisions, time, dt, particle, seed, speed, chunk)
     by_time = time is not None
-    bar = _progress_bar(time if by_time else collisions, progress, unit="time" if by_time else "collision",
+    bar = _progress_bar(time if by_time else kwargs["collisions"], progress, unit="time" if by_time else "collision",
                         desc="trajectory")
     if bar is None:
-        return _core.trajectory(scene_or_shape, **kwargs)
+        return _core.trajectory(scene_or_shape, on_chunk=on_chunk, **kwargs)
     with bar:
         def update(done, t):
             bar.update((t if by_time else done) - bar.n)
-        return _core.trajectory(scene_or_shape, progress=update, **kwargs)
+        return _core.trajectory(scene_or_shape, on_chunk=on_chunk, progress=update, **kwargs)
+
+
+class _Stopped(Exception):
+    """Raised in the computing thread to end its trajectory when the iterator is closed."""
+
+
+class _Stream:
+    """What the thread computing a trajectory shares with its TrajectoryChunks: a queue of at most
+    one finished chunk, and a stop flag that the thread sees within a tenth of a second (at its
+    next heartbeat or while it waits to hand over a chunk).  It holds no reference to the
+    iterator, so that an iterator the consumer drops (a `break`) is closed and stops the thread."""
+
+    def __init__(self):
+        self.queue = queue.Queue(maxsize=1)
+        self.stop = threading.Event()
+
+    def put(self, item):
+        while not self.stop.is_set():
+            try:
+                return self.queue.put(item, timeout=0.1)
+            except queue.Full:
+                pass
+        raise _Stopped
+
+    def heartbeat(self, collisions, t):
+        if self.stop.is_set():
+            raise _Stopped
+
+    def produce(self, scene_or_shape, kwargs):
+        try:
+            item = ("end", _core.trajectory(scene_or_shape, on_chunk=lambda rows: self.put(("rows", rows)),
+                                            progress=self.heartbeat, **kwargs))
+        except _Stopped:
+            return
+        except BaseException as e:  # handed to the consumer, raised by its next()
+            item = ("error", e)
+        try:
+            self.put(item)
+        except _Stopped:
+            pass
+
+
+class TrajectoryChunks:
+    """An iterator of a trajectory's chunks (see trajectory_chunks).  After the last chunk its
+    `collisions`, `escaped` and `trapped` are set (None before).  close() (or leaving a `with`
+    block, or dropping the iterator) stops the computation."""
+
+    def __init__(self, scene_or_shape, kwargs, bar, by_time):
+        self.collisions = self.escaped = self.trapped = None
+        self._stream = _Stream()
+        self._bar, self._by_time, self._done = bar, by_time, 0
+        self._closed = False
+        self._thread = threading.Thread(target=self._stream.produce, args=(scene_or_shape, kwargs),
+                                        name="billiardkit-trajectory", daemon=True)
+        self._thread.start()
+
+    def __iter__(self):
+        return self
+
+    def __next__(self):
+        if self._closed:
+            raise StopIteration
+        try:
+            kind, item = self._get()
+        except BaseException:  # KeyboardInterrupt
+            self.close()
+            raise
+        if kind == "rows":
+            self._advance(item)
+            return item
+        self.close()
+        if kind == "error":
+            raise item
+        self.collisions, self.escaped, self.trapped = item["collisions"], item["escaped"], item["trapped"]
+        raise StopIteration
+
+    def _get(self):
+        """The next item, waiting in steps of a tenth of a second so that Ctrl-C is seen."""
+        while True:
+            try:
+                return self._stream.queue.get(timeout=0.1)
+            except queue.Empty:
+                pass
+
+    def _advance(self, rows):
+        if self._bar is None:
+            return
+        if self._by_time:
+            samples = rows["samples"]
+            last = rows["times"][-1] if samples is None or not len(samples["times"]) \
+                else max(rows["times"][-1], samples["times"][-1])
+            self._bar.update(last - self._bar.n)
+        else:
+            self._done += len(rows["times"])
+            self._bar.update(self._done - 1 - self._bar.n)  # (the first chunk's first row is the start)
+
+    def close(self):
+        if self._closed:
+            return
+        self._closed = True
+        self._stream.stop.set()
+        self._thread.join()
+        if self._bar is not None:
+            self._bar.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def __del__(self):
+        if hasattr(self, "_thread"):
+            self.close()
+
+
+def trajectory_chunks(scene_or_shape, *, collisions=None, time=None, dt=None, particle=0, seed=1, speed=1.0,
+                      chunk=65536, progress=None):
+    """The trajectory of `trajectory` (same arguments and numbers) as an iterator of chunks: each a
+    dict of the keys trajectory returns, with at most `chunk` bounces and `chunk` samples; the
+    chunks concatenated are trajectory's arrays, bit for bit.
+
+        for rows in bk.trajectory_chunks(scene, collisions=10**9, dt=0.01):
+            ...
+
+    A thread computes the next chunk with the GIL released while the consumer handles this one;
+    at most three chunks exist at a time, so a run of 1e9 collisions needs bounded memory.
+    Ctrl-C raises KeyboardInterrupt within a tenth of a second; a `break` (or close(), or a
+    `with` block's end) stops the computation.  An error in the arguments is raised by the first
+    next().  After the last chunk, the iterator's collisions, escaped and trapped are set."""
+    kwargs = _trajectory_arguments(scene_or_shape, collisions, time, dt, particle, seed, speed, chunk)
+    by_time = time is not None
+    bar = _progress_bar(time if by_time else kwargs["collisions"], progress, unit="time" if by_time else "collision",
+                        desc="trajectory")
+    return TrajectoryChunks(scene_or_shape, kwargs, bar, by_time)
 
 
 class Animation:

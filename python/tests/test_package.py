@@ -2,6 +2,7 @@
 from a Shape, numpy initial conditions, RunResult and its Summary, progress, Ctrl-C, plots."""
 import json
 import math
+import pathlib
 import subprocess
 import sys
 import types
@@ -24,7 +25,9 @@ def test_summary_equals_the_programs_summary_json(source, tmp_path):
     res = bk.run(bk.Scene(scene_file, particles=300, time=4), progress=False)
     for key in ("mean_dE", "var_dE", "se_mean_dE", "se_var_dE", "mean_dE_deviation_se", "var_dE_deviation_se",
                 "fp_mean_dE", "fp_var_dE", "mean_dE_fp_deviation_se", "var_dE_fp_deviation_se"):
-        assert getattr(res.summary, key) == cli[key], key
+        assert getattr(res.summary, key) == getattr(res, key) == cli[key], key
+    with pytest.raises(AttributeError, match="no_such_key"):
+        res.no_such_key
     for s, c in zip(res.summaries, cli["per_time"]):
         assert (s.t, s.var_dE, s.se_var_dE) == (c["t"], c["var_dE"], c["se_var_dE"])
     d = json.loads(json.dumps(res.to_dict()))  # plain data
@@ -117,9 +120,45 @@ def test_plots_draw_the_objects(source):
     sphere = bk.load_shape(source / "shapes" / "3d" / "sinai3.yaml")
     assert sphere._repr_png_()[:4] == b"\x89PNG"
 
-@pytest.mark.parametrize("script", ["own_table.py", "driven_ensemble.py", "paper_fig4.py", "magnetic_trajectory.py"])
+@pytest.mark.parametrize("script", ["own_table.py", "driven_ensemble.py", "paper_fig2.py", "paper_fig4.py",
+                                    "magnetic_trajectory.py"])
 def test_examples_run(source, tmp_path, script):
     done = subprocess.run([sys.executable, str(source / "examples" / script), "--quick", "--output",
                            str(tmp_path / "out.png")], capture_output=True, text=True, cwd=tmp_path)
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "out.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_the_type_stubs_name_everything_public():
+    """__init__.pyi (shipped for editors) declares every name in __all__, every public attribute of
+    each class, and each Python function's parameters with their defaults."""
+    import ast
+    import inspect
+    stub = ast.parse((pathlib.Path(bk.__file__).parent / "__init__.pyi").read_text())
+    top = {n.name: n for n in stub.body if isinstance(n, (ast.FunctionDef, ast.ClassDef))}
+    top.update({t.id: n for n in stub.body if isinstance(n, (ast.Assign, ast.AnnAssign))
+                for t in (n.targets if isinstance(n, ast.Assign) else [n.target])})
+    assert sorted(set(bk.__all__) - set(top)) == []
+
+    def members(cls_node):
+        names = set()
+        for base in cls_node.bases:
+            if isinstance(base, ast.Name) and base.id in top:
+                names |= members(top[base.id])
+        for n in cls_node.body:
+            if isinstance(n, (ast.FunctionDef, ast.ClassDef)):
+                names.add(n.name)
+            elif isinstance(n, ast.AnnAssign):
+                names.add(n.target.id)
+        return names
+
+    for name in bk.__all__:
+        obj = getattr(bk, name)
+        if isinstance(top[name], ast.ClassDef) and not issubclass(obj, BaseException):
+            public = {a for a in dir(obj) if not a.startswith("_")}
+            assert sorted(public - members(top[name])) == [], name
+        elif isinstance(top[name], ast.FunctionDef) and inspect.isfunction(obj):
+            args = top[name].args
+            stubbed = [a.arg for a in args.posonlyargs + args.args + args.kwonlyargs]
+            assert stubbed == [p.name for p in inspect.signature(obj).parameters.values()
+                               if p.kind not in (p.VAR_KEYWORD, p.VAR_POSITIONAL)], name

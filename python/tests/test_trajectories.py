@@ -1,9 +1,11 @@
 """Dense and streamed trajectories, Ctrl-C in long ones, and animations (billiardkit.animate and
 `billiard animate`): checked against closed forms, against each other, and by decoding the movie."""
 import json
+import pathlib
 import shutil
 import subprocess
 import sys
+import threading
 
 import numpy as np
 import pytest
@@ -58,21 +60,125 @@ def test_trajectory_stops_at_its_time(source):
     assert np.allclose(np.hypot(*free["samples"]["velocities"].T), 1, rtol=1e-14)
 
 
-def test_a_long_stream_runs_in_bounded_memory(source):
+# 2e6 collisions streamed by callback or by iterator; each script sets `collisions` and `rows`.
+STREAMS = {
+    "on_chunk": ("n = [0]\n"
+                 "def count(c): n[0] += len(c['times'])\n"
+                 "r = bk.trajectory(shape, collisions=2_000_000, on_chunk=count, chunk=10000)\n"
+                 "collisions, rows = r['collisions'], n[0]\n"),
+    "iterator": ("chunks = bk.trajectory_chunks(shape, collisions=2_000_000, chunk=10000, progress=False)\n"
+                 "rows = sum(len(c['times']) for c in chunks)\n"
+                 "collisions = chunks.collisions\n"),
+}
+
+
+@pytest.mark.parametrize("stream", sorted(STREAMS))
+def test_a_long_stream_runs_in_bounded_memory(source, stream):
     """2e6 collisions streamed: the process's peak memory grows by far less than the ~110 MB the
     collected rows would take (7 doubles a bounce)."""
-    script = (f"import billiardkit as bk, resource\n"
+    script = ("import billiardkit as bk, resource\n"
               f"shape = bk.load_shape({str(source / 'shapes' / 'circle.yaml')!r})\n"
-              f"bk.trajectory(shape, collisions=1000, on_chunk=lambda c: None)\n"
-              f"before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss\n"
-              f"n = [0]\n"
-              f"def count(c): n[0] += len(c['times'])\n"
-              f"r = bk.trajectory(shape, collisions=2_000_000, on_chunk=count, chunk=10000)\n"
-              f"print(r['collisions'], n[0], resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before)\n")
+              "bk.trajectory(shape, collisions=1000, on_chunk=lambda c: None)\n"
+              "list(bk.trajectory_chunks(shape, collisions=1000))\n"
+              "before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss\n"
+              + STREAMS[stream] +
+              "print(collisions, rows, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before)\n")
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True).stdout.split()
     collisions, rows, growth_kb = map(int, out)
     assert collisions == 2_000_000 and rows == 2_000_001
     assert growth_kb < 10_000
+
+
+def test_iterated_chunks_equal_the_collected_trajectory(source):
+    sc = scene(source, particles=4)
+    whole = bk.trajectory(sc, collisions=3000, dt=0.01, particle=2)
+    with bk.trajectory_chunks(sc, collisions=3000, dt=0.01, particle=2, chunk=700) as chunks:
+        got = list(chunks)
+    assert (chunks.collisions, chunks.escaped, chunks.trapped) == (3000, False, False)
+    assert len(got) > 4 and all(len(c["times"]) <= 700 and len(c["samples"]["times"]) <= 700 for c in got)
+    for key in ("times", "positions", "velocities", "walls"):
+        assert np.concatenate([c[key] for c in got]).tobytes() == whole[key].tobytes(), key
+    for key in ("times", "positions", "velocities", "energies"):
+        assert np.concatenate([c["samples"][key] for c in got]).tobytes() == whole["samples"][key].tobytes(), key
+    shape = bk.load_shape(source / "shapes" / "3d" / "sinai3.yaml")
+    free = bk.trajectory(shape, collisions=500, seed=4)
+    got = list(bk.trajectory_chunks(shape, collisions=500, seed=4, chunk=64))
+    assert got[0]["samples"] is None
+    assert np.concatenate([c["positions"] for c in got]).tobytes() == free["positions"].tobytes()
+
+
+def computing_threads():
+    return [t for t in threading.enumerate() if t.name == "billiardkit-trajectory"]
+
+
+def test_breaking_out_of_the_chunks_stops_the_computation(source):
+    shape = bk.load_shape(source / "shapes" / "stadium.yaml")
+    first = []
+    for rows in bk.trajectory_chunks(shape, collisions=10**9, chunk=1000, progress=False):
+        first.append(rows)
+        if len(first) == 3:
+            break
+    assert computing_threads() == []  # the dropped iterator stopped and joined its thread
+    whole = bk.trajectory(shape, collisions=2999)  # 3000 rows: the start and 2999 bounces
+    assert np.concatenate([c["times"] for c in first]).tobytes() == whole["times"].tobytes()
+    chunks = bk.trajectory_chunks(shape, collisions=10**9, chunk=1000)
+    next(chunks)
+    chunks.close()
+    assert computing_threads() == [] and chunks.collisions is None
+    with pytest.raises(StopIteration):
+        next(chunks)
+
+
+def test_bad_arguments_are_raised_by_the_first_chunk(source):
+    chunks = bk.trajectory_chunks(scene(source, particles=3), particle=3)
+    with pytest.raises(IndexError, match="particle"):
+        next(chunks)
+    assert computing_threads() == []
+
+
+def test_ctrl_c_interrupts_iterated_chunks(source):
+    """KeyboardInterrupt reaches the loop, with the computing thread stopped, within a second of
+    Python's SIGINT handler running (the loop waits for chunks in steps of a tenth of a second,
+    so the handler runs promptly)."""
+    script = ("import billiardkit as bk, signal, sys, threading, time\n"
+              "arrived = []\n"
+              "def handler(sig, frame):\n"
+              "    arrived.append(time.monotonic()); signal.default_int_handler(sig, frame)\n"
+              "signal.signal(signal.SIGINT, handler)\n"
+              f"scene = bk.Scene({str(source / 'scenes' / 'clover-driven.yaml')!r}, particles=2)\n"
+              "print('started', flush=True)\n"
+              "try:\n"
+              "    for rows in bk.trajectory_chunks(scene, collisions=10**9, dt=0.01, progress=False):\n"
+              "        pass\n"
+              "except KeyboardInterrupt:\n"
+              "    alive = [t for t in threading.enumerate() if t.name == 'billiardkit-trajectory']\n"
+              "    print('interrupted', len(alive), time.monotonic() - arrived[0] < 1, flush=True); sys.exit(3)\n")
+    assert interrupted(script) == (3, "interrupted 0 True\n")
+
+
+def test_billiard_trajectory_writes_pythons_rows(source, tmp_path):
+    """The CLI's chunked files hold bk.trajectory's bounces (wall >= -1) and samples (wall -2)."""
+    for table, py_source, extra in [("shapes/stadium.yaml", bk.load_shape(source / "shapes" / "stadium.yaml"),
+                                     dict(seed=5)),
+                                    ("scenes/clover-driven.yaml", scene(source), dict())]:
+        out = tmp_path / pathlib.Path(table).stem
+        seed = ["--seed", "5"] if extra else []
+        done = subprocess.run([BINARY, "trajectory", table, "--collisions", "300", "--dt", "0.05", "--particle", "1",
+                               "--chunk", "100", "--quiet", "--out", str(out), *seed], capture_output=True, text=True,
+                              cwd=source)
+        assert done.returncode == 0, done.stderr
+        index = json.loads((out / "trajectory.json").read_text())
+        rows = np.concatenate([np.load(out / c["file"]) for c in index["chunks"]])
+        assert index["columns"] == ["t", "x", "y", "vx", "vy", "wall", "energy"] and len(rows) == index["rows"]
+        py = bk.trajectory(py_source, collisions=300, dt=0.05, particle=1, **extra)
+        bounces, samples = rows[rows[:, 5] != -2], rows[rows[:, 5] == -2]
+        assert bounces[:, 0].tobytes() == py["times"].tobytes()
+        assert bounces[:, 1:3].tobytes() == py["positions"].tobytes()
+        assert bounces[:, 3:5].tobytes() == py["velocities"].tobytes()
+        assert np.array_equal(bounces[:, 5], py["walls"])
+        assert samples[:, 0].tobytes() == py["samples"]["times"].tobytes()
+        assert samples[:, 1:3].tobytes() == py["samples"]["positions"].tobytes()
+        assert samples[:, 6].tobytes() == py["samples"]["energies"].tobytes()
 
 
 @pytest.mark.parametrize("streamed", [False, True])
