@@ -247,6 +247,30 @@ TEST_CASE("3-D Sinai in a weak and a strong field: rate × λ/v = 1, no escape w
   }
 }
 
+TEST_CASE("helices in the non-convex L-prism mesh (the BVH walked along the guiding axis): rate × λ/v = 1, no escape") {
+  const auto shape = geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/l-prism.yaml");
+  const dynamics::Table3 table(shape.region);
+  const double lambda = geometry::mean_free_path(geometry3::measures_of(shape.region));
+  for (const double rc : {5.0, 0.3}) {
+    const dynamics::MagneticFlight3 flight{Vec3(Vec3(1, -2, 2) / 3) / rc};
+    dynamics::RunOptions opt;
+    const double T = 10;
+    opt.record_times = {0, T};
+    opt.verify_every_flight = true;
+    const std::size_t N = 4000;
+    const auto result = dynamics::run_ensemble(table, flight, dynamics::microcanonical(table, flight, 1.0, 6), opt, N, 2);
+    REQUIRE(result.escapes() == 0);
+    double sum = 0, sum2 = 0;
+    for (const auto& log : result.logs) {
+      const double x = double(log.collisions) / T * lambda;
+      sum += x, sum2 += x * x;
+    }
+    const double mean = sum / N, se = std::sqrt((sum2 / N - mean * mean) / (N - 1));
+    INFO("r_c " << rc << ": rate × λ/v = " << mean << " ± " << se);
+    CHECK(std::abs(mean - 1) <= 3 * se);
+  }
+}
+
 TEST_CASE("a helix conserves the speed over 1e6 collisions in the 3-D Sinai billiard") {
   const auto shape = geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/sinai3.yaml");
   const dynamics::Table3 table(shape.region);
