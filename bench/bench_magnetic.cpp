@@ -17,14 +17,14 @@ using namespace billiards;
 
 int main(int argc, char** argv) {
   const double n = argc > 1 ? std::atof(argv[1]) : 1e7;
-  fmt::print("{:<10} {:>6} {:>14} {:>14} {:>10} {:>8}\n", "shape", "r_c", "magnetic M/s", "straight M/s",
+  fmt::print("{:<14} {:>6} {:>14} {:>14} {:>10} {:>8}\n", "shape", "r_c", "magnetic M/s", "straight M/s",
              "ns/bounce", "escapes");
   for (const char* name : {"clover", "stadium", "sinai"}) {
     const auto region = geometry::load_shape(fmt::format("{}/shapes/{}.yaml", BILLIARDS_SOURCE_DIR, name)).region;
     const auto [straight, straight_escapes] = bench::throughput(region, dynamics::FreeFlight{}, n);
     for (const double rc : {10.0, 1.0, 0.3}) {
       const auto [magnetic, escapes] = bench::throughput(region, dynamics::MagneticFlight{1 / rc}, n);
-      fmt::print("{:<10} {:>6} {:>14.2f} {:>14.2f} {:>10.1f} {:>8}\n", name, rc, magnetic / 1e6, straight / 1e6,
+      fmt::print("{:<14} {:>6} {:>14.2f} {:>14.2f} {:>10.1f} {:>8}\n", name, rc, magnetic / 1e6, straight / 1e6,
                  1e9 / magnetic, escapes + straight_escapes);
     }
   }
@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
                                         std::pair{"oblique", dynamics::Vec3(dynamics::Vec3(1, 2, 2) / 3)}})
     for (const double rc : {10.0, 1.0, 0.3}) {
       const auto [magnetic, escapes] = bench::throughput(sinai3, dynamics::MagneticFlight3{direction / rc}, n);
-      fmt::print("{:<10} {:>6} {:>14.2f} {:>14.2f} {:>10.1f} {:>8}\n", fmt::format("sinai3 {}", axis), rc,
+      fmt::print("{:<14} {:>6} {:>14.2f} {:>14.2f} {:>10.1f} {:>8}\n", fmt::format("sinai3 {}", axis), rc,
                  magnetic / 1e6, straight / 1e6, 1e9 / magnetic, escapes + straight_escapes);
     }
   return 0;
