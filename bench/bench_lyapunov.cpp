@@ -1,13 +1,15 @@
 // The cost of the phase-space diagnostics per collision against plain collisions, in the same
 // run on one core: `evolve` alone (the collision search and the bounce), the boundary map
 // (plus s and p of every hit) and the tangent dynamics of `lyapunov` (plus the collision
-// Jacobian and a 4 × 4 Gram–Schmidt per collision); free flights in three tables and the
-// driven clover.
+// Jacobian and a 4 × 4 Gram–Schmidt per collision; 6 × 6 in 3-D); free flights in three
+// tables and the driven clover, and in 3-D free flights in the Sinai cube and the ball and
+// the driven Sinai cube (no boundary map in 3-D).
 // Usage: bench_lyapunov [collisions per case, default 2e6]
 #include "billiards/analysis/boundary_map.hpp"
 #include "billiards/analysis/lyapunov.hpp"
 #include "billiards/dynamics/scene_run.hpp"
 #include "billiards/geometry/shape_file.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
 
 #include <fmt/core.h>
 
@@ -25,22 +27,27 @@ double seconds_of(Fn&& fn) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-template <class Flight>
-void compare(const std::string& name, const dynamics::Table& table, const geometry::Region2& region,
+/// One table's row: plain collisions, the boundary map (2-D), tangent dynamics.
+template <class Flight, class Coordinates>
+void compare(const std::string& name, const dynamics::TableFor<Flight>& table, const Coordinates* coordinates,
              const Flight& flight, const typename Flight::State& s, std::size_t collisions) {
   double sink = 0;
   const double plain = seconds_of([&] {
     dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto&) { sink += hit.t; });
   });
-  const analysis::BoundaryCoordinates coordinates(region);
-  const double bmap = seconds_of([&] {
-    const auto r = analysis::boundary_map(table, coordinates, flight, [&](std::size_t) { return s; }, 1, collisions, 1);
-    sink += r.rows.back();
-  });
-  const double tangent = seconds_of([&] { sink += analysis::lyapunov_trajectory(table, flight, s, collisions).time; });
   const double n = double(collisions);
-  fmt::print("| {} | {:.0f} | {:.0f} ({:.2f}x) | {:.0f} ({:.2f}x) |\n", name, 1e9 * plain / n, 1e9 * bmap / n,
-             bmap / plain, 1e9 * tangent / n, tangent / plain);
+  std::string bmap_cell = "—";
+  if constexpr (!dynamics::is_3d<Flight>) {
+    const double bmap = seconds_of([&] {
+      const auto r =
+          analysis::boundary_map(table, *coordinates, flight, [&](std::size_t) { return s; }, 1, collisions, 1);
+      sink += r.rows.back();
+    });
+    bmap_cell = fmt::format("{:.0f} ({:.2f}x)", 1e9 * bmap / n, bmap / plain);
+  }
+  const double tangent = seconds_of([&] { sink += analysis::lyapunov_trajectory(table, flight, s, collisions).time; });
+  fmt::print("| {} | {:.0f} | {} | {:.0f} ({:.2f}x) |\n", name, 1e9 * plain / n, bmap_cell, 1e9 * tangent / n,
+             tangent / plain);
   if (sink == 0.5) fmt::print("\n");  // (keeps the work)
 }
 
@@ -53,12 +60,26 @@ int main(int argc, char** argv) {
   for (const char* name : {"sinai", "clover", "elliptic-stadium"}) {
     const auto shape = geometry::load_shape(fmt::format("{}/shapes/{}.yaml", BILLIARDS_SOURCE_DIR, name));
     const dynamics::Table table(shape.region);
+    const analysis::BoundaryCoordinates coordinates(shape.region);
     const auto s = dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 1)(0);
-    compare(std::string(name) + " (free)", table, shape.region, dynamics::FreeFlight{}, s, collisions);
+    compare(std::string(name) + " (free)", table, &coordinates, dynamics::FreeFlight{}, s, collisions);
   }
   const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-driven.yaml");
   const dynamics::Table table(scene.shape.region);
+  const analysis::BoundaryCoordinates coordinates(scene.shape.region);
   const dynamics::PeriodicDriveFlight drive{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
-  compare("clover (driven)", table, scene.shape.region, drive, dynamics::initial_states(scene, table, drive)(0),
+  compare("clover (driven)", table, &coordinates, drive, dynamics::initial_states(scene, table, drive)(0),
           collisions / 10);
+  for (const char* name : {"sinai3", "ball"}) {
+    const auto shape = geometry3::load_shape3(fmt::format("{}/shapes/3d/{}.yaml", BILLIARDS_SOURCE_DIR, name));
+    const dynamics::Table3 table3(shape.region);
+    const auto s = dynamics::microcanonical(table3, dynamics::FreeFlight3{}, 1.0, 1)(0);
+    compare<dynamics::FreeFlight3, void>(std::string(name) + " 3-D (free)", table3, nullptr, {}, s, collisions);
+  }
+  const auto scene3 = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/sinai3-driven.yaml");
+  const dynamics::Table3 table3(scene3.shape3.region);
+  const dynamics::PeriodicDriveFlight3 drive3{scene3.force.amplitude / scene3.mass, scene3.force.omega,
+                                             scene3.force.phase};
+  compare<dynamics::PeriodicDriveFlight3, void>("sinai3 3-D (driven)", table3, nullptr, drive3,
+                                                dynamics::initial_states(scene3, table3, drive3)(0), collisions / 10);
 }

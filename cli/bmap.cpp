@@ -1,7 +1,7 @@
 // billiard bmap SHAPE|SCENE: the boundary map in Birkhoff coordinates (s, p) of every collision
 // of an ensemble, or a Poincaré section of its flights on a line (--section "y = 0"), or the
 // stroboscopic section of a driven scene (--strobe PHASE); as .npy, CSV and a picture drawn by
-// scripts/plot_bmap.py.  2-D only.
+// scripts/plot_bmap.py.  In 3-D: plane sections only (--section "z = 0").
 #include "commands.hpp"
 #include "output.hpp"
 #include "phase_space.hpp"
@@ -32,27 +32,36 @@ struct BmapArgs : PhaseSpaceArgs {
   bool csv = true;
 };
 
-/// "LHS = RHS" in x and y, linear: the line n·x = c with n a unit vector.
-SectionLine parse_section(const std::string& text) {
+/// "LHS = RHS", linear in x and y (and z in 3-D): the hyperplane n·x = c with n a unit vector.
+template <int D>
+analysis::BasicSection<D> parse_section(const std::string& text) {
+  using V = Eigen::Matrix<double, D, 1>;
+  const char* names[] = {"x", "y", "z"};
   const auto eq = text.find('=');
   const auto fail = [&](const std::string& why) { return InputError("--section '" + text + "'", 0, why); };
   if (eq == std::string::npos || text.find('=', eq + 1) != std::string::npos)
-    throw fail("a section is one equation of a line in x and y, such as \"y = 0\" or \"x + 2*y = 1\"");
-  const auto f = [&](double x, double y) {
+    throw fail(D == 2 ? "a section is one equation of a line in x and y, such as \"y = 0\" or \"x + 2*y = 1\""
+                      : "a 3-D section is one equation of a plane in x, y and z, such as \"z = 0\" or \"x + y = 0.2\"");
+  const auto f = [&](const V& x) {
     Expressions e;
-    e.define("x", fmt::format("{:.17g}", x), "--section", 0);
-    e.define("y", fmt::format("{:.17g}", y), "--section", 0);
+    for (int k = 0; k < D; ++k) e.define(names[k], fmt::format("{:.17g}", x[k]), "--section", 0);
     return e.evaluate("(" + text.substr(0, eq) + ") - (" + text.substr(eq + 1) + ")", "--section", 0);
   };
-  const double c = -f(0, 0), a = f(1, 0) + c, b = f(0, 1) + c;
-  const double norm = std::hypot(a, b);
-  for (const auto& [x, y] : {std::pair{0.37, 1.91}, std::pair{-2.3, 0.71}, std::pair{1e3, -7e2}}) {
-    const double linear = a * x + b * y - c;
-    if (!(std::abs(f(x, y) - linear) <= 1e-9 * (std::abs(linear) + norm * (std::abs(x) + std::abs(y)) + std::abs(c))))
-      throw fail("the equation is not linear in x and y: a section is a straight line");
+  const double c = -f(V::Zero());
+  V a;
+  for (int k = 0; k < D; ++k) a[k] = f(V::Unit(k)) + c;
+  const double norm = a.norm();
+  for (const double scale : {1.0, -2.3, 1e3}) {
+    V x;
+    for (int k = 0; k < D; ++k) x[k] = scale * std::sin(1.7 + 2.9 * k);
+    const double linear = a.dot(x) - c;
+    if (!(std::abs(f(x) - linear) <= 1e-9 * (std::abs(linear) + norm * x.cwiseAbs().sum() + std::abs(c))))
+      throw fail(D == 2 ? "the equation is not linear in x and y: a section is a straight line"
+                        : "the equation is not linear in x, y and z: a 3-D section is a plane");
   }
-  if (!(norm > 0)) throw fail("the equation does not depend on x or y: it is no line");
-  return {geometry::Vec2(a, b) / norm, c / norm};
+  if (!(norm > 0)) throw fail(D == 2 ? "the equation does not depend on x or y: it is no line"
+                                     : "the equation does not depend on x, y or z: it is no plane");
+  return {a / norm, c / norm};
 }
 
 /// The CSV of rows with the given columns (particle and counters as whole numbers).
@@ -78,24 +87,26 @@ struct Section {
 };
 
 template <class Flight>
-Section compute(const dynamics::Scene& scene, const Flight& flight, const BmapArgs& args,
-                const analysis::BoundaryCoordinates& coordinates, Progress& progress) {
-  if constexpr (dynamics::is_3d<Flight>) {
-    throw InputError(scene.file, 0, "bmap works on 2-D tables only");
+Section compute(const dynamics::Scene& scene, const Flight& flight, const BmapArgs& args, Progress& progress) {
+  constexpr int D = Flight::State::dimension;
+  const auto table = dynamics::table_of<Flight>(scene);
+  const auto initial = dynamics::initial_states(scene, table, flight);
+  const auto tick = [&](std::size_t done) { progress.update(done); };
+  const std::size_t n = scene.particles, k = args.collisions;
+  if (!args.section.empty()) {
+    if constexpr (analysis::section_flight<Flight>)
+      return {D == 2 ? "section" : "section3", analysis::line_section(table, flight, parse_section<D>(args.section),
+                                                                      initial, n, k, args.threads, scene.mass, tick)};
+    throw InputError("--section", 0,
+                     fmt::format("a section is drawn for free flights and a uniform force, static or periodic (lab "
+                                 "picture); not for this scene (force {}{})",
+                                 scene.force.name(), scene.magnetic() ? ", magnetic" : ""));
+  }
+  if constexpr (D == 3) {
+    throw InputError(scene.file, 0,
+                     "the boundary map's coordinates (s, p) and the stroboscopic section are 2-D only: for a 3-D table "
+                     "give a plane section, such as --section \"z = 0\"");
   } else {
-    const auto table = dynamics::table_of<Flight>(scene);
-    const auto initial = dynamics::initial_states(scene, table, flight);
-    const auto tick = [&](std::size_t done) { progress.update(done); };
-    const std::size_t n = scene.particles, k = args.collisions;
-    if (!args.section.empty()) {
-      const SectionLine line = parse_section(args.section);
-      if constexpr (std::is_same_v<Flight, dynamics::FreeFlight>)
-        return {"section", analysis::line_section(table, flight, line, initial, n, k, args.threads, scene.mass, tick)};
-      throw InputError("--section", 0,
-                       fmt::format("a line section is drawn for free flights (scene force: {}); for a driven scene "
-                                   "use --strobe PHASE",
-                                   scene.force.name()));
-    }
     if (args.strobe) {
       if constexpr (analysis::driven_flight<Flight>)
         return {"strobe",
@@ -103,6 +114,7 @@ Section compute(const dynamics::Scene& scene, const Flight& flight, const BmapAr
       throw InputError("--strobe", 0,
                        fmt::format("a stroboscopic section needs a periodic drive (scene force: {})", scene.force.name()));
     }
+    const analysis::BoundaryCoordinates coordinates(scene.shape.region);
     return {"bmap", analysis::boundary_map(table, coordinates, flight, initial, n, k, args.threads, scene.mass, tick)};
   }
 }
@@ -114,6 +126,7 @@ std::vector<std::string> names(const std::array<const char*, N>& columns) {
 
 std::vector<std::string> columns_of(const std::string& kind) {
   if (kind == "section") return names(analysis::section_columns);
+  if (kind == "section3") return names(analysis::section3_columns);
   if (kind == "strobe") return names(analysis::strobe_columns);
   return names(analysis::bmap_columns);
 }
@@ -121,6 +134,7 @@ std::vector<std::string> columns_of(const std::string& kind) {
 void write_csv(const OutputDir& out, const Section& s) {
   out.write_stream(s.kind + ".csv", [&](std::ostream& os) {
     if (s.kind == "section") write_rows_csv(os, s.rows, analysis::section_columns);
+    else if (s.kind == "section3") write_rows_csv(os, s.rows, analysis::section3_columns);
     else if (s.kind == "strobe") write_rows_csv(os, s.rows, analysis::strobe_columns);
     else write_rows_csv(os, s.rows, analysis::bmap_columns);
   });
@@ -128,8 +142,11 @@ void write_csv(const OutputDir& out, const Section& s) {
 
 void run_bmap(const BmapArgs& args) {
   if (!args.section.empty() && args.strobe) throw InputError("--section", 0, "give --section or --strobe, not both");
-  if (!args.section.empty()) parse_section(args.section);  // (before any work)
-  auto scene = load_phase_space_scene(args, "bmap");
+  auto scene = load_phase_space_scene(args);
+  if (!args.section.empty()) {  // (before any work)
+    if (scene.dimension == 3) parse_section<3>(args.section);
+    else parse_section<2>(args.section);
+  }
   const std::string out_dir = !args.out.empty() ? args.out : scene.output_dir + "-bmap";
   OutputDir::require_creatable(out_dir);
   if (!args.picture.empty()) {
@@ -137,23 +154,25 @@ void run_bmap(const BmapArgs& args) {
     if (ext != ".png" && ext != ".pdf" && ext != ".svg")
       throw InputError("-o " + args.picture, 0, "the picture's format follows its extension: .png, .pdf or .svg");
   }
-  const analysis::BoundaryCoordinates coordinates(scene.shape.region);
   Progress progress("bmap", scene.particles, !args.quiet);
-  const Section s =
-      dynamics::with_flight(scene, [&](const auto& flight) { return compute(scene, flight, args, coordinates, progress); });
+  const Section s = dynamics::with_flight(scene, [&](const auto& flight) { return compute(scene, flight, args, progress); });
   progress.finish();
 
   OutputDir out(out_dir);
   const auto columns = columns_of(s.kind);
   out.write_npy(s.kind + ".npy", s.rows.rows, s.rows.row_count(), columns.size());
   if (args.csv) write_csv(out, s);
-  const nlohmann::json meta = {
+  nlohmann::json meta = {
       {"kind", s.kind}, {"table", scene.file}, {"shape", scene.shape_name()}, {"force", scene.force.name()},
       {"particles", scene.particles}, {"collisions", args.collisions}, {"seed", scene.seed}, {"columns", columns},
-      {"rows", s.rows.row_count()}, {"escapes", s.rows.escapes()}, {"perimeter", coordinates.perimeter()},
-      {"piece_starts", coordinates.piece_starts()}, {"loop_firsts", coordinates.loop_firsts()},
-      {"section", args.section}, {"strobe", args.strobe ? nlohmann::json(*args.strobe) : nlohmann::json()},
+      {"rows", s.rows.row_count()}, {"escapes", s.rows.escapes()}, {"section", args.section}, {"strobe", args.strobe ? nlohmann::json(*args.strobe) : nlohmann::json()},
       {"npy", s.kind + ".npy"}};
+  if (s.kind == "bmap") {
+    const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+    meta["perimeter"] = coordinates.perimeter();
+    meta["piece_starts"] = coordinates.piece_starts();
+    meta["loop_firsts"] = coordinates.loop_firsts();
+  }
   out.write_json(s.kind + ".json", meta);
   const std::string picture = s.kind + ".png";
   run_python(script_path("plot_bmap.py"), {out.path(s.kind + ".json").string(), out.path(picture).string()});
@@ -181,12 +200,12 @@ void run_bmap(const BmapArgs& args) {
 
 void add_bmap(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "bmap", "The boundary map (s, p) of every collision, a line section or a stroboscopic section (2-D)");
+      "bmap", "The boundary map (s, p) of every collision, a line (3-D: plane) section or a stroboscopic section");
   auto args = std::make_shared<BmapArgs>();
   add_phase_space_options(cmd, *args, 10, 10000);
   cmd->add_option("-o,--output", args->picture, "also draw the picture here (.png, .pdf or .svg)");
   cmd->add_option("--out", args->out, "output directory (default: out/NAME-bmap)");
-  cmd->add_option("--section", args->section, "Poincaré section on a line instead, e.g. \"y = 0\" (free flights)");
+  cmd->add_option("--section", args->section, "Poincaré section on a line (3-D: a plane) instead, e.g. \"y = 0\" (free flights, a uniform force)");
   cmd->add_option("--strobe", args->strobe, "stroboscopic section at this drive phase instead (driven scenes)")
       ->transform(expression_value);
   cmd->add_flag("!--no-csv", args->csv, "write the .npy only");

@@ -1,6 +1,6 @@
 // billiard chaos SHAPE: the evidence that the undriven table is chaotic and ergodic, which the
 // energy-diffusion theory assumes; and the short form of the same check that `coeffs` and
-// `compare` print beside their prediction.  2-D only.
+// `compare` print beside their prediction; 2-D and 3-D (analysis/chaos.hpp for the cells).
 #include "commands.hpp"
 #include "phase_space.hpp"
 #include "progress.hpp"
@@ -32,7 +32,7 @@ nlohmann::json verdict_json(const analysis::ChaosVerdict& v, const analysis::Cha
           {"noise_distance", v.noise_distance},
           {"min_exponent_per_collision", o.min_exponent_per_collision},
           {"max_distance", o.max_distance},
-          {"cells", {o.cells_s, o.cells_p}},
+          {"cells", {v.position_cells, o.cells_p}},
           {"orbits", o.orbits},
           {"collisions", o.collisions},
           {"seed", o.seed},
@@ -74,7 +74,7 @@ void print_ergodicity(const nlohmann::json& check) {
 }
 
 void add_chaos(CLI::App& app) {
-  auto* cmd = app.add_subcommand("chaos", "Is the undriven table chaotic and ergodic? (the theory's assumption; 2-D)");
+  auto* cmd = app.add_subcommand("chaos", "Is the undriven table chaotic and ergodic? (the theory's assumption)");
   struct Args : PhaseSpaceArgs {
     bool json = false;
   };
@@ -83,14 +83,16 @@ void add_chaos(CLI::App& app) {
   add_phase_space_options(cmd, *args, defaults.orbits, defaults.collisions);
   cmd->add_flag("--json", args->json, "print JSON");
   cmd->callback([args] {
-    const auto scene = load_phase_space_scene(*args, "chaos");
+    const auto scene = load_phase_space_scene(*args);
     analysis::ChaosOptions o;
     o.orbits = scene.particles;
     o.collisions = args->collisions;
     o.seed = scene.seed;
     o.threads = args->threads;
     Progress progress("chaos", o.orbits, !args->quiet);
-    const auto v = analysis::chaos_of(scene.shape.region, o, [&](std::size_t d) { progress.update(d); });
+    const auto tick = [&](std::size_t d) { progress.update(d); };
+    const auto v = scene.dimension == 3 ? analysis::chaos_of(scene.shape3.region, o, tick)
+                                        : analysis::chaos_of(scene.shape.region, o, tick);
     progress.finish();
     if (args->json) {
       std::cout << verdict_json(v, o).dump(2) << "\n";
@@ -99,7 +101,8 @@ void add_chaos(CLI::App& app) {
     fmt::print("{}: {} free orbits x {} collisions at speed 1\n", scene.shape_name(), o.orbits, o.collisions);
     fmt::print("maximal Lyapunov exponent: {:.6g} ± {:.2g} per unit time, {:.6g} ± {:.2g} per collision\n",
                v.lyapunov.mean, v.lyapunov.se, v.lyapunov_per_collision.mean, v.lyapunov_per_collision.se);
-    fmt::print("boundary map against ds dp on {} x {} cells: pooled distance {:.3g}, coverage {:.3g}\n", o.cells_s,
+    fmt::print("boundary map against {} on {} x {} cells: pooled distance {:.3g}, coverage {:.3g}\n",
+               scene.dimension == 3 ? "dA cos(theta) dOmega (walls x cos^2 theta)" : "ds dp", v.position_cells,
                o.cells_p, v.pooled_distance, v.pooled_coverage);
     for (std::size_t i = 0; i < v.orbits.size(); ++i) {
       const auto& e = v.orbits[i];

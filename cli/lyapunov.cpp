@@ -1,5 +1,6 @@
 // billiard lyapunov SHAPE|SCENE: the Lyapunov spectrum from tangent dynamics, per unit time and
-// per collision, each with its standard error over independent trajectories.  2-D only.
+// per collision, each with its standard error over independent trajectories; 4 exponents in 2-D,
+// 6 in 3-D.
 #include "commands.hpp"
 #include "phase_space.hpp"
 #include "progress.hpp"
@@ -11,12 +12,15 @@
 #include <fmt/ranges.h>
 
 #include <iostream>
+#include <variant>
 
 namespace billiards::cli {
 
 namespace {
 
-nlohmann::json spectrum_json(const analysis::LyapunovSpectrum& r, const dynamics::Scene& scene, std::size_t collisions) {
+template <int D>
+nlohmann::json spectrum_json(const analysis::BasicLyapunovSpectrum<D>& r, const dynamics::Scene& scene,
+                             std::size_t collisions) {
   const auto means = [](const auto& e) {
     std::vector<double> m;
     for (const auto& x : e) m.push_back(x.mean);
@@ -41,6 +45,7 @@ nlohmann::json spectrum_json(const analysis::LyapunovSpectrum& r, const dynamics
           {"speed", std::sqrt(2 * scene.energy / scene.mass)},
           {"particles", scene.particles},
           {"collisions", collisions},
+          {"dimension", D},
           {"table", scene.file},
           {"shape", scene.shape_name()},
           {"force", scene.force.name()},
@@ -48,11 +53,13 @@ nlohmann::json spectrum_json(const analysis::LyapunovSpectrum& r, const dynamics
           {"escapes", r.escapes()}};
 }
 
-}  // namespace
+using AnySpectrum = std::variant<analysis::BasicLyapunovSpectrum<2>, analysis::BasicLyapunovSpectrum<3>>;
 
-analysis::LyapunovSpectrum lyapunov_of(const dynamics::Scene& scene, const PhaseSpaceArgs& args) {
+/// The scene's spectrum over args.collisions bounces of each particle; exit status 3 if a
+/// particle escaped.
+AnySpectrum lyapunov_of(const dynamics::Scene& scene, const PhaseSpaceArgs& args) {
   Progress progress("lyapunov", scene.particles, !args.quiet);
-  const auto r = dynamics::with_flight(scene, [&](const auto& flight) {
+  const auto r = dynamics::with_flight(scene, [&](const auto& flight) -> AnySpectrum {
     using Flight = std::decay_t<decltype(flight)>;
     if constexpr (analysis::tangent_flight<Flight>) {
       const auto table = dynamics::table_of<Flight>(scene);
@@ -60,22 +67,36 @@ analysis::LyapunovSpectrum lyapunov_of(const dynamics::Scene& scene, const Phase
                                          args.collisions, args.threads, [&](std::size_t d) { progress.update(d); });
     } else {
       throw InputError(scene.file, 0,
-                       fmt::format("Lyapunov exponents are computed for free flights, a static force and the uniform "
-                                   "periodic drive (lab picture) in 2-D, not for this scene (force {})",
-                                   scene.force.name()));
-      return analysis::LyapunovSpectrum{};
+                       fmt::format("Lyapunov exponents are computed for free flights and the uniform periodic drive "
+                                   "(lab picture) in 2-D and 3-D and a static force in 2-D, not for this scene (force "
+                                   "{}{})",
+                                   scene.force.name(), scene.magnetic() ? ", magnetic" : ""));
     }
   });
   progress.finish();
-  if (r.escapes() > 0) {
-    fmt::print(stderr, "billiard: error: {} particle(s) escaped the region\n", r.escapes());
+  const auto escapes = std::visit([](const auto& s) { return s.escapes(); }, r);
+  if (escapes > 0) {
+    fmt::print(stderr, "billiard: error: {} particle(s) escaped the region\n", escapes);
     throw CLI::RuntimeError(3);
   }
   return r;
 }
 
+template <int D>
+void print_spectrum(const analysis::BasicLyapunovSpectrum<D>& r, const dynamics::Scene& scene, std::size_t collisions,
+                    const nlohmann::json& j) {
+  fmt::print("{} ({}): {} trajectories x {} collisions, speed {:.6g}, mean free time {:.6g}\n", scene.shape_name(),
+             scene.force.name(), scene.particles, collisions, j["speed"].get<double>(), j["mean_free_time"].get<double>());
+  fmt::print("maximal exponent: {:.6g} ± {:.2g} per unit time, {:.6g} ± {:.2g} per collision\n", r.per_time[0].mean,
+             r.per_time[0].se, r.per_collision[0].mean, r.per_collision[0].se);
+  for (int k = 0; k < 2 * D; ++k)
+    fmt::print("  lambda_{} = {:+.6g} ± {:.2g} per unit time\n", k + 1, r.per_time[k].mean, r.per_time[k].se);
+}
+
+}  // namespace
+
 void add_lyapunov(CLI::App& app) {
-  auto* cmd = app.add_subcommand("lyapunov", "Lyapunov exponents from tangent dynamics (2-D)");
+  auto* cmd = app.add_subcommand("lyapunov", "Lyapunov exponents from tangent dynamics (2-D: 4, 3-D: 6)");
   struct Args : PhaseSpaceArgs {
     bool json = false;
   };
@@ -83,20 +104,14 @@ void add_lyapunov(CLI::App& app) {
   add_phase_space_options(cmd, *args, 16, 20000);
   cmd->add_flag("--json", args->json, "print JSON");
   cmd->callback([args] {
-    const auto scene = load_phase_space_scene(*args, "lyapunov");
-    const auto r = lyapunov_of(scene, *args);
-    const auto j = spectrum_json(r, scene, args->collisions);
-    if (args->json) {
-      std::cout << j.dump(2) << "\n";
-      return;
-    }
-    fmt::print("{} ({}): {} trajectories x {} collisions, speed {:.6g}, mean free time {:.6g}\n", scene.shape_name(),
-               scene.force.name(), scene.particles, args->collisions, j["speed"].get<double>(),
-               j["mean_free_time"].get<double>());
-    fmt::print("maximal exponent: {:.6g} ± {:.2g} per unit time, {:.6g} ± {:.2g} per collision\n", r.per_time[0].mean,
-               r.per_time[0].se, r.per_collision[0].mean, r.per_collision[0].se);
-    for (int k = 0; k < 4; ++k)
-      fmt::print("  lambda_{} = {:+.6g} ± {:.2g} per unit time\n", k + 1, r.per_time[k].mean, r.per_time[k].se);
+    const auto scene = load_phase_space_scene(*args);
+    std::visit(
+        [&](const auto& r) {
+          const auto j = spectrum_json(r, scene, args->collisions);
+          if (args->json) std::cout << j.dump(2) << "\n";
+          else print_spectrum(r, scene, args->collisions, j);
+        },
+        lyapunov_of(scene, *args));
   });
 }
 

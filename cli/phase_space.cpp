@@ -38,25 +38,30 @@ void add_phase_space_options(CLI::App* cmd, PhaseSpaceArgs& args, std::size_t pa
   add_set_option(cmd, args.set);
 }
 
-dynamics::Scene load_phase_space_scene(const PhaseSpaceArgs& args, const std::string& command) {
+dynamics::Scene load_phase_space_scene(const PhaseSpaceArgs& args) {
   dynamics::SceneOverrides overrides;
   overrides.set = parse_overrides(args.set);
   overrides.particles = args.particles;
   overrides.seed = args.seed;
-  if (is_scene_file(args.source)) {
-    auto scene = dynamics::load_scene(args.source, overrides);
-    if (scene.dimension != 2) throw InputError(args.source, 0, command + " works on 2-D tables only");
-    return scene;
-  }
-  if (geometry3::shape_dimension(args.source) != 2) throw InputError(args.source, 0, command + " works on 2-D tables only");
+  if (is_scene_file(args.source)) return dynamics::load_scene(args.source, overrides);
   dynamics::Scene scene;
   scene.file = args.source;
-  scene.shape = geometry::load_shape(args.source, overrides.set);
+  scene.dimension = geometry3::shape_dimension(args.source);
+  if (scene.dimension == 3) {
+    scene.shape3 = geometry3::load_shape3(args.source, overrides.set);
+    scene.force.amplitude = Eigen::VectorXd::Zero(3);
+  } else {
+    scene.shape = geometry::load_shape(args.source, overrides.set);
+  }
   scene.energy = 0.5;
   scene.particles = args.particles;
   scene.seed = args.seed.value_or(1);
   scene.output_dir = "out/" + std::filesystem::path(args.source).stem().string();
   return scene;
+}
+
+void refuse_3d(const dynamics::Scene& scene, const std::string& command) {
+  if (scene.dimension != 2) throw InputError(scene.file, 0, command + " works on 2-D tables only");
 }
 
 }  // namespace billiards::cli

@@ -1,6 +1,6 @@
 // What the phase-space commands (bmap, lyapunov, chaos) share: a table given as a shape file
 // (free flights at speed 1) or a scene file (its force, energy and seed), its particles, and
-// the flight the scene needs.  2-D only.
+// the flight the scene needs.
 #pragma once
 
 #include "options.hpp"
@@ -30,12 +30,10 @@ struct PhaseSpaceArgs {
 void add_phase_space_options(CLI::App* cmd, PhaseSpaceArgs& args, std::size_t particles, std::size_t collisions);
 
 /// The scene of a scene file, or a shape file as a free scene (energy ½, mass 1: speed 1);
-/// with the command line's particles and seed.  Refuses 3-D tables.
-dynamics::Scene load_phase_space_scene(const PhaseSpaceArgs& args, const std::string& command);
-
-/// The scene's Lyapunov spectrum over args.collisions bounces of each particle (lyapunov.cpp);
-/// exit status 3 if a particle escaped.
-analysis::LyapunovSpectrum lyapunov_of(const dynamics::Scene& scene, const PhaseSpaceArgs& args);
+/// with the command line's particles and seed; 2-D or 3-D.
+dynamics::Scene load_phase_space_scene(const PhaseSpaceArgs& args);
+/// Refuses a 3-D scene: "COMMAND works on 2-D tables only".
+void refuse_3d(const dynamics::Scene& scene, const std::string& command);
 
 /// The short chaos check that `coeffs` and `compare` state beside their prediction (chaos.cpp):
 /// `billiard chaos --json`'s keys for 8 orbits x 20000 collisions, and "reason".

@@ -1,8 +1,9 @@
-// billiardkit's phase-space functions: boundary_map, lyapunov and chaos, on a Shape (free
-// flights at speed 1) or a 2-D Scene (its force, energy and seed), with the numbers of
-// `billiard bmap`, `billiard lyapunov` and `billiard chaos`.
+// billiardkit's phase-space functions: boundary_map, lyapunov, chaos and escape, on a Shape
+// (free flights at speed 1) or a 2-D Scene (its force, energy and seed), with the numbers of
+// `billiard bmap`, `billiard lyapunov`, `billiard chaos` and `billiard escape`.
 #include "billiards/analysis/boundary_map.hpp"
 #include "billiards/analysis/chaos.hpp"
+#include "billiards/analysis/escape.hpp"
 #include "billiards/analysis/lyapunov.hpp"
 #include "billiards/dynamics/scene_run.hpp"
 #include "billiards/geometry/shape_file.hpp"
@@ -79,7 +80,7 @@ py::dict lyapunov(const py::object& table, std::optional<std::size_t> particles,
     py::gil_scoped_release unlocked;
     r = dynamics::with_flight(scene, [&](const auto& flight) {
       using Flight = std::decay_t<decltype(flight)>;
-      if constexpr (analysis::tangent_flight<Flight>) {
+      if constexpr (analysis::tangent_flight<Flight> && !dynamics::is_3d<Flight>) {  // (3-D refused by scene_of)
         const auto t = dynamics::table_of<Flight>(scene);
         return analysis::lyapunov_spectrum(t, flight, dynamics::initial_states(scene, t, flight), scene.particles,
                                            collisions, threads);
@@ -130,6 +131,51 @@ py::dict chaos(const geometry::Shape& shape, std::size_t orbits, std::size_t col
                   "orbit_distances"_a = py::array_t<double>(py::ssize_t(distances.size()), distances.data()));
 }
 
+template <class T>
+py::array_t<T> array_of(const std::vector<T>& v) {
+  return py::array_t<T>(py::ssize_t(v.size()), v.data());
+}
+
+py::dict escape(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
+                std::optional<std::uint64_t> seed, bool entering, int threads) {
+  Scene scene = scene_of(table, particles, seed);
+  if (entering) scene.through_exit = geometry::SourceRef{"entering=True", 0};
+  const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+  const analysis::Exits exits(coordinates, analysis::read_exits(scene.shape, coordinates));
+  if (exits.empty()) throw py::value_error("the shape lists no exits: nothing can escape");
+  std::vector<analysis::EscapeRecord> records;
+  {
+    py::gil_scoped_release unlocked;
+    records = dynamics::with_flight(scene, [&](const auto& flight) {
+      using Flight = std::decay_t<decltype(flight)>;
+      if constexpr (dynamics::is_3d<Flight>) {
+        return std::vector<analysis::EscapeRecord>{};  // (refused by scene_of)
+      } else {
+        const auto t = dynamics::table_of<Flight>(scene);
+        return analysis::escape_times(t, coordinates, exits, flight,
+                                      analysis::open_table_initial_states(scene, t, flight, coordinates, exits),
+                                      scene.particles, collisions, threads);
+      }
+    });
+  }
+  const auto summary = analysis::summarize(records);
+  if (summary.lost > 0) throw std::runtime_error(fmt::format("{} particle(s) escaped the region through a wall", summary.lost));
+  std::vector<double> times;
+  std::vector<std::uint64_t> counts;
+  std::vector<bool> escaped;
+  for (const auto& r : records) times.push_back(r.time), counts.push_back(r.collisions), escaped.push_back(r.escaped);
+  const auto P = analysis::survival(summary.times, scene.particles);
+  const double speed = std::sqrt(2 * scene.energy / scene.mass), V = scene.measures().volume;
+  return py::dict("escape_times"_a = array_of(times), "collisions"_a = array_of(counts),
+                  "escaped"_a = py::array(py::cast(escaped)).attr("astype")("bool"),
+                  "mean_escape_time"_a = summary.mean, "mean_escape_time_se"_a = summary.se,
+                  "exit_length"_a = exits.length(),
+                  "kac_mean_escape_time"_a = analysis::kac_mean_escape_time(V, exits.length(), speed, 2),
+                  "survival_t"_a = array_of(P.t), "survival_P"_a = array_of(P.P),
+                  "still_inside"_a = summary.still_inside(scene.particles), "speed"_a = speed,
+                  "ensemble"_a = scene.through_exit ? "through_exit" : "microcanonical");
+}
+
 }  // namespace
 
 void def_phase_space(py::module_& m) {
@@ -142,6 +188,11 @@ columns particle, collision, s, p, t, energy -- `billiard bmap`'s bmap.npy (docs
         "Lyapunov exponents from tangent dynamics: `billiard lyapunov --json`'s keys, and per_trajectory arrays.");
   m.def("chaos", &chaos, "shape"_a, py::kw_only(), "orbits"_a = 12, "collisions"_a = 50000, "seed"_a = 1,
         "threads"_a = 0, "Is the undriven table chaotic and ergodic? `billiard chaos --json`'s main keys.");
+  m.def("escape", &escape, "table"_a, py::kw_only(), "particles"_a = py::none(), "collisions"_a = 1000000,
+        "seed"_a = py::none(), "entering"_a = false, "threads"_a = 0,
+        R"(Escape times through the exits of a Shape (free, speed 1) or a 2-D Scene (its ensemble: inside, or
+through_exit): arrays escape_times (NaN if still inside), collisions, escaped; mean_escape_time, its se,
+exit_length, kac_mean_escape_time and the survival curve survival_t, survival_P -- `billiard escape`'s numbers.)");
 }
 
 }  // namespace billiards::python

@@ -3,7 +3,7 @@
 
     plot_bmap.py INPUT.json OUTPUT.png|OUTPUT.pdf|OUTPUT.svg
 
-INPUT.json is the metadata `billiard bmap` writes beside its .npy: "kind" ("bmap", "section" or
+INPUT.json is the metadata `billiard bmap` writes beside its .npy: "kind" ("bmap", "section", "section3" or
 "strobe"), "npy" (the rows, relative to INPUT.json), "columns", "perimeter", "piece_starts"
 (s at each piece's start), "loop_firsts", "shape", "force", "particles", "collisions".
 Points are coloured by particle; at most MAX_POINTS of them are drawn (every k-th row).
@@ -48,6 +48,12 @@ def main():
         ax.set_xlabel(f"s: arc length along the boundary (outer loop, then the holes; S = {S:.6g})")
         ax.set_ylabel("p = sin φ (φ: outgoing velocity from the inward normal)")
         what = "boundary map"
+    elif kind == "section3":
+        x, y = rows[:, col["u1"]], rows[:, col["u2"]]
+        ax.set_aspect("equal")
+        ax.set_xlabel(f"u1: position in the plane {meta['section']} (along e1)")
+        ax.set_ylabel("u2 (along e2 = n x e1)")
+        what = f"Poincaré section {meta['section']}"
     elif kind == "section":
         x, y = rows[:, col["u"]], rows[:, col["p"]]
         ax.set_ylim(-1, 1)

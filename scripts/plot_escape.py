@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Draws the survival probability P(t) written by `billiard escape`, on a log scale, with the
-exponential law exp(-t / tau) of Kac's mean tau = pi V / (w v).
+exponential law exp(-t / tau) of Kac's mean tau = pi V / (w v) (2-D; 4 V / (A v) in 3-D).
 
     plot_escape.py DIR OUTPUT.png
 """
@@ -26,7 +26,8 @@ def main():
     keep = P > 0
     ax.semilogy(t[keep], P[keep], "-", color="#1f3b57", label=f"simulation ({meta['ensemble']}, N = {meta['particles']})")
     tau = meta["kac_mean_escape_time"]
-    ax.semilogy(t, np.exp(-t / tau), "--", color="#c0392b", label=f"exp(-t / τ), τ = πV/(wv) = {tau:.4g}")
+    kac = "4V/(Av)" if meta.get("dimension") == 3 else "πV/(wv)"
+    ax.semilogy(t, np.exp(-t / tau), "--", color="#c0392b", label=f"exp(-t / τ), τ = {kac} = {tau:.4g}")
     ax.set_xlabel("t (time since the start)")
     ax.set_ylabel("P(t): fraction still inside")
     ax.set_title(f"{meta['shape']}: escape through exits of length w = {meta['exit_length']:.4g}\n"

@@ -6,6 +6,7 @@
 
 #include "billiards/analysis/chaos.hpp"
 #include "billiards/geometry/shape_file.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -83,4 +84,31 @@ TEST_CASE("billiard chaos --json, and coeffs warns when the table is not chaotic
   r = billiard("coeffs scenes/clover-driven.yaml --json");
   REQUIRE(r.status == 0);
   CHECK(nlohmann::json::parse(r.output)["chaos_check"]["ergodic"] == true);
+}
+
+TEST_CASE("3-D: the cube and the ball are neither chaotic nor uniform in (wall, cos^2 theta); the 3-D Sinai table is") {
+  analysis::ChaosOptions o;
+  o.orbits = 6;
+  o.collisions = 20000;
+  o.threads = 2;
+  const auto region = [](const char* name) {
+    return geometry3::load_shape3(std::string(BILLIARDS_SOURCE_DIR "/shapes/3d/") + name).region;
+  };
+  for (const char* name : {"cube.yaml", "ball.yaml"}) {
+    INFO(name);
+    const auto v = analysis::chaos_of(region(name), o);
+    CHECK(!v.chaotic);
+    CHECK(!v.uniform);
+  }
+  const auto v = analysis::chaos_of(region("sinai3.yaml"), o);
+  CHECK(v.position_cells == 7);  // six faces and the ball
+  CHECK(v.ergodic());
+  CHECK(v.pooled_distance < 3 * v.noise_distance);
+  // The same verdict from the command, for 1 and 2 threads alike.
+  const std::string cmd = "chaos shapes/3d/sinai3.yaml --particles 3 --collisions 20000 --json --quiet --threads ";
+  const auto one = billiard(cmd + "1"), two = billiard(cmd + "2");
+  INFO(one.output);
+  REQUIRE(one.status == 0);
+  CHECK(one.output == two.output);
+  CHECK(nlohmann::json::parse(one.output)["ergodic"] == true);
 }

@@ -42,7 +42,7 @@ void check_against_finite_differences(const dynamics::Table& table, const Flight
   REQUIRE(made == collisions);
   const auto next = dynamics::collision(table, flight, end);
   const double t_end = 0.5 * (end.t + next.t);
-  analysis::tangent_flight_step(q, t_end - end.t);
+  analysis::tangent_flight_step<2>(q, t_end - end.t);
   const double h = 1e-7;
   for (int j = 0; j < 4; ++j) {
     auto plus = s, minus = s;

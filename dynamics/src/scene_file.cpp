@@ -216,6 +216,13 @@ void check_drive(const Scene& scene, const SceneReader& r, const YAML::Node& for
                        omega, displacement, 1000 * lambda));
 }
 
+/// Does the shape file list exits (a non-empty `exits:` list; the phase-space code reads and
+/// checks them)?
+bool lists_exits(const std::string& shape_path) {
+  const YAML::Node exits = load_yaml(read_input_file(shape_path, "shape file"), shape_path)["exits"];
+  return exits && exits.IsSequence() && exits.size() > 0;
+}
+
 }  // namespace
 
 geometry::Measures Scene::measures() const {
@@ -318,7 +325,8 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   scene.seed = ov.seed ? *ov.seed : run["seed"] ? r.whole(run["seed"], "run.seed", 0, max_seed) : 1;
 
   const YAML::Node init = r.required(doc, "initial", "a scene file");
-  r.expect_keys(init, {"microcanonical", "csv"}, "'initial'");
+  r.expect_keys(init, {"microcanonical", "csv", "through_exit"}, "'initial'");
+  if (init.IsMap() && init.size() > 1) r.fail(init, "'initial' takes one of 'microcanonical', 'through_exit' and 'csv'");
   if (const YAML::Node csv = init["csv"]) {
     if (!csv.IsScalar()) r.fail(csv, "'csv' is the path of an initial-condition file");
     scene.initial_csv = (fs::path(base_dir) / csv.Scalar()).lexically_normal().string();
@@ -333,9 +341,17 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
       scene.particles = scene.initial_states.size();
     }
   } else {
-    const YAML::Node mc = r.required(init, "microcanonical", "'initial'");
-    r.expect_keys(mc, {"energy"}, "'microcanonical'");
-    scene.energy = r.positive(r.required(mc, "energy", "'microcanonical'"), "energy");
+    const char* kind = init["through_exit"] ? "through_exit" : "microcanonical";
+    const YAML::Node ensemble = r.required(init, kind, "'initial'");
+    r.expect_keys(ensemble, {"energy"}, fmt::format("'{}'", kind));
+    scene.energy = r.positive(r.required(ensemble, "energy", fmt::format("'{}'", kind)), "energy");
+    if (init["through_exit"]) {
+      if (!lists_exits(shape_path))
+        r.fail(ensemble, fmt::format("'through_exit' needs exits, and the shape file {} lists none (exits: [...], "
+                                     "docs/shapes.md)",
+                                     shape_path));
+      scene.through_exit = r.ref(ensemble);
+    }
     scene.particles = r.whole(r.required(run, "particles", "'run'"), "run.particles", 2, 1e12);
   }
   if (ov.particles) {

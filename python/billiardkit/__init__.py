@@ -12,9 +12,9 @@ Shapes and scenes come from files, from dicts with the files' keys, and (scenes)
 plus keyword arguments; see docs/python.md.
 """
 from . import _core
-from ._core import (InputError, Scene, Shape, Shape3, boundary_map, chaos, coefficients, fokker_planck_cdf,
-                    fokker_planck_eta, fokker_planck_moments, fokker_planck_numerical, info, lyapunov,
-                    sample_moments)
+from ._core import (InputError, Scene, Shape, Shape3, boundary_map, chaos, coefficients, escape,
+                    fokker_planck_cdf, fokker_planck_eta, fokker_planck_moments, fokker_planck_numerical, info,
+                    lyapunov, sample_moments)
 from .plotting import plot_run, plot_shape, plot_trajectory
 from .results import RunResult, Summary, run
 from .scenes import load_scene, load_shape
@@ -23,6 +23,6 @@ from .trajectories import Animation, animate, trajectory
 __version__ = _core.__version__
 
 __all__ = ["Animation", "InputError", "RunResult", "Scene", "Shape", "Shape3", "Summary", "animate", "boundary_map",
-           "chaos", "coefficients", "fokker_planck_cdf", "fokker_planck_eta", "fokker_planck_moments",
+           "chaos", "coefficients", "escape", "fokker_planck_cdf", "fokker_planck_eta", "fokker_planck_moments",
            "fokker_planck_numerical", "info", "load_scene", "load_shape", "lyapunov", "plot_run", "plot_shape",
            "plot_trajectory", "run", "sample_moments", "trajectory", "__version__"]

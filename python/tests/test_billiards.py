@@ -292,3 +292,26 @@ def test_phase_space_functions_give_the_programs_numbers(source, tmp_path):
     assert lyap["lyapunov"] == cli["lyapunov"] and lyap["lyapunov_se"] == cli["lyapunov_se"]
     assert np.allclose(lyap["per_trajectory"].sum(axis=1), 0, atol=1e-9)
     assert bk.chaos(shape, orbits=3, collisions=5000)["ergodic"] is True
+
+
+def test_escape_gives_the_programs_numbers_and_kacs_lemma(source, tmp_path):
+    """bk.escape: the arrays of escape.csv, the --json summary, and Kac's mean pi V / (w v)."""
+    shape_path = tmp_path / "clover-open.yaml"
+    shape_path.write_text((source / "shapes" / "clover.yaml").read_text() +
+                          "exits:\n  - {from: [R1*sin(0.1), a + R1*cos(0.1)], to: [-R1*sin(0.1), a + R1*cos(0.1)]}\n")
+    shape = bk.load_shape(shape_path)
+    r = bk.escape(shape, particles=4000, seed=3, entering=True)
+    cli = billiard_json("escape", shape_path, "--particles", 4000, "--seed", 3, "--entering", "--quiet",
+                        "--out", tmp_path / "escape")
+    assert r["mean_escape_time"] == cli["mean_escape_time"]
+    assert r["mean_escape_time_se"] == cli["mean_escape_time_se"]
+    assert r["exit_length"] == pytest.approx(0.2, rel=1e-12)
+    table = np.loadtxt(tmp_path / "escape" / "escape.csv", delimiter=",", skiprows=1)
+    assert np.array_equal(r["escape_times"], table[:, 1]) and np.array_equal(r["collisions"], table[:, 2])
+    assert r["escaped"].all() and r["escape_times"].mean() == pytest.approx(r["mean_escape_time"], rel=1e-12)
+    assert abs(r["mean_escape_time"] - np.pi * bk.info(shape)["V"] / 0.2) < 3 * r["mean_escape_time_se"]
+    # P(t): 1 at t = 0, 0 after the last escape, and the fraction still inside in between.
+    t, P = r["survival_t"], r["survival_P"]
+    assert P[0] == 1 and P[-1] == 0
+    k = len(t) // 3
+    assert P[k] == pytest.approx((r["escape_times"] > t[k]).mean(), abs=1e-12)

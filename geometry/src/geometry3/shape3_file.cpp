@@ -104,7 +104,7 @@ Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const
   Expressions expr;
   YamlReader r(name, expr);
   if (!doc.IsMap()) throw InputError(name, 1, "a shape file is a YAML mapping");
-  r.expect_keys(doc, {"name", "dimension", "parameters", "boundary", "holes"}, "a 3-D shape file");
+  r.expect_keys(doc, {"name", "dimension", "parameters", "boundary", "holes", "exits"}, "a 3-D shape file");
   const YAML::Node dim = r.required(doc, "dimension", "a 3-D shape file");
   if (!dim.IsScalar() || dim.Scalar() != "3") r.fail(dim, "a 3-D shape file has 'dimension: 3'");
   if (const YAML::Node params = doc["parameters"]) r.define_parameters(params, overrides);

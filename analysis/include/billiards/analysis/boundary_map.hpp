@@ -1,5 +1,6 @@
 // The boundary map of a 2-D table in Birkhoff coordinates (s, p), and the two sections of the
-// flow beside it: a Poincaré section on a line, and the stroboscopic section of a driven scene.
+// flow beside it: a Poincaré section on a line (a plane in 3-D), and the stroboscopic section of
+// a driven scene.
 //
 // s is the arc length along the boundary.  The outer loop comes first, from the source of its
 // first piece (the first point written in the shape file) in the loop's own direction
@@ -17,6 +18,8 @@
 #include "billiards/analysis/per_particle.hpp"
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/scene_run.hpp"
+#include "billiards/geometry3/region3.hpp"
 #include "billiards/geometry/pieces.hpp"
 
 #include <array>
@@ -66,19 +69,37 @@ class BoundaryCoordinates {
   std::vector<double> origins_;  // elliptic arcs: the primitive of the arc length at the source
 };
 
-/// A line n·x = c of the plane, n a unit vector: a Poincaré section.  A crossing counts when the
-/// particle goes from n·x < c to n·x > c; its coordinates are u = d·x along the line and
-/// p = d·v/|v|, d = (−n_y, n_x).
-struct SectionLine {
-  Vec2 normal;
+/// A hyperplane n·x = c, n a unit vector: a Poincaré section on a line (2-D) or a plane (3-D).
+/// A crossing counts when the particle goes from n·x < c to n·x ≥ c.  Its coordinates: in 2-D
+/// u = d·x along the line and p = d·v/|v|, d = (−n_y, n_x); in 3-D u1 = e1·x, u2 = e2·x,
+/// p1 = e1·v/|v|, p2 = e2·v/|v|, where e1 is the coordinate axis least aligned with n (the first
+/// of equals), made orthogonal to n, and e2 = n × e1 (for "z = 0": e1 = x̂, e2 = ŷ).
+template <int D>
+struct BasicSection {
+  Eigen::Matrix<double, D, 1> normal;
   double offset = 0;
-  Vec2 direction() const { return {-normal.y(), normal.x()}; }
+  /// The orthonormal basis of the hyperplane (above).
+  std::array<Eigen::Matrix<double, D, 1>, D - 1> basis() const {
+    if constexpr (D == 2) {
+      return {Vec2(-normal.y(), normal.x())};
+    } else {
+      int axis = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::abs(normal[k]) < std::abs(normal[axis])) axis = k;
+      const geometry3::Vec3 e1 = (geometry3::Vec3::Unit(axis) - normal[axis] * normal).normalized();
+      return {e1, normal.cross(e1)};
+    }
+  }
 };
+using SectionLine = BasicSection<2>;
+using SectionPlane = BasicSection<3>;
 
 /// Rows of `bmap.npy`: particle, collision (1, 2, ...), s, p, t, energy (after the bounce).
 inline constexpr std::array<const char*, 6> bmap_columns{"particle", "collision", "s", "p", "t", "energy"};
 /// Rows of a line section: particle, crossing (1, 2, ...), u, p, t, energy.
 inline constexpr std::array<const char*, 6> section_columns{"particle", "crossing", "u", "p", "t", "energy"};
+/// Rows of a plane section (3-D): particle, crossing, u1, u2, p1, p2, t, energy.
+inline constexpr std::array<const char*, 8> section3_columns{"particle", "crossing", "u1", "u2", "p1", "p2", "t", "energy"};
 /// Rows of a stroboscopic section: particle, period k (t = (PHASE − phase0 + 2πk)/ω), x, y, vx,
 /// vy, t, energy.
 inline constexpr std::array<const char*, 8> strobe_columns{"particle", "k", "x", "y", "vx", "vy", "t", "energy"};
@@ -101,7 +122,7 @@ namespace detail {
 /// Runs every particle for `collisions` bounces, `record(i, hit, before, after, rows)`
 /// appending its rows; collects them in particle order.
 template <class Flight, class Initial, class Record>
-SectionRows collect(const dynamics::Table& table, const Flight& flight, const Initial& initial, std::size_t particles,
+SectionRows collect(const dynamics::TableFor<Flight>& table, const Flight& flight, const Initial& initial, std::size_t particles,
                     std::size_t collisions, int threads, std::size_t columns, Record record,
                     const std::function<void(std::size_t)>& progress) {
   struct Part {
@@ -144,22 +165,96 @@ SectionRows boundary_map(const dynamics::Table& table, const BoundaryCoordinates
       progress);
 }
 
-/// The Poincaré section of free flights on a line (section_columns), over `collisions`
-/// bounces of each particle: a straight flight crosses the line at most once between bounces.
-template <class Initial>
-SectionRows line_section(const dynamics::Table& table, const dynamics::FreeFlight& flight, const SectionLine& line,
-                         const Initial& initial, std::size_t particles, std::size_t collisions, int threads,
-                         double mass = 1, const std::function<void(std::size_t)>& progress = {}) {
+/// The flights whose crossings of a section are found here: straight ones (in closed form), and
+/// those under a uniform force, static or periodic, in 2-D and 3-D (by root finding on the
+/// flight itself, below).
+template <class Flight>
+concept section_flight =
+    dynamics::is_straight<Flight> || std::is_same_v<Flight, dynamics::ConstantForceFlight> ||
+    std::is_same_v<Flight, dynamics::PeriodicDriveFlight> || std::is_same_v<Flight, dynamics::PeriodicDriveFlight3>;
+
+namespace detail {
+
+/// The zeros of t ↦ f(t) on [a, b] where f(a) and f(b) differ in sign (f(a) < 0 ≤ f(b) or the
+/// reverse), by bisection to the last bit.
+template <class F>
+double bisect(F&& f, double a, double b) {
+  const bool rising = f(a) < 0;
+  for (;;) {
+    const double m = 0.5 * (a + b);
+    if (!(m > a && m < b)) return b;
+    ((f(m) < 0) == rising ? a : b) = m;
+  }
+}
+
+/// Times in (a, b) at which the flight's acceleration along n may change sign: none under a
+/// static force; the zeros of cos(ω t + phase0) under the periodic drive.
+template <class Flight>
+std::vector<double> acceleration_turns(const Flight& flight, double a, double b) {
+  std::vector<double> turns;
+  if constexpr (requires { flight.omega; }) {
+    const double half = geometry::pi / flight.omega;
+    const double first = (geometry::pi / 2 - flight.phase0) / flight.omega;
+    for (double k = std::ceil((a - first) / half); first + k * half < b; ++k)
+      if (first + k * half > a) turns.push_back(first + k * half);
+  }
+  return turns;
+}
+
+/// The times in (before.t, t_end] at which the flight from `before` crosses the section
+/// upward.  Between the acceleration's turns, n·v is monotone, so it has at most one zero; that
+/// zero splits the interval into pieces on which n·x is monotone, each crossing the section at
+/// most once.  Straight flights cross once at most, found in closed form.
+template <section_flight Flight>
+void upward_crossings(const Flight& flight, const typename Flight::State& before, double t_end,
+                      const BasicSection<Flight::State::dimension>& section, std::vector<double>& out) {
+  const auto f = [&](double t) { return section.normal.dot(flight.advance(before, t).x) - section.offset; };
+  if constexpr (dynamics::is_straight<Flight>) {
+    const double f0 = section.normal.dot(before.x) - section.offset, f1 = f(t_end);
+    if (f0 < 0 && f1 >= 0) out.push_back(before.t + (t_end - before.t) * (f0 / (f0 - f1)));
+  } else {
+    const auto g = [&](double t) { return section.normal.dot(flight.advance(before, t).v); };
+    std::vector<double> knots{double(before.t)};
+    for (const double t : acceleration_turns(flight, before.t, t_end)) knots.push_back(t);
+    knots.push_back(t_end);
+    for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+      std::vector<double> pieces{knots[k]};
+      if ((g(knots[k]) < 0) != (g(knots[k + 1]) < 0)) pieces.push_back(bisect(g, knots[k], knots[k + 1]));
+      pieces.push_back(knots[k + 1]);
+      for (std::size_t j = 0; j + 1 < pieces.size(); ++j)
+        if (f(pieces[j]) < 0 && f(pieces[j + 1]) >= 0) out.push_back(bisect(f, pieces[j], pieces[j + 1]));
+    }
+  }
+}
+
+}  // namespace detail
+
+/// The Poincaré section on a line (2-D, section_columns) or a plane (3-D, section3_columns),
+/// over `collisions` bounces of each particle: the upward crossings of every flight, found on
+/// the flight itself.
+template <section_flight Flight, class Initial>
+SectionRows line_section(const dynamics::TableFor<Flight>& table, const Flight& flight,
+                         const BasicSection<Flight::State::dimension>& section, const Initial& initial,
+                         std::size_t particles, std::size_t collisions, int threads, double mass = 1,
+                         const std::function<void(std::size_t)>& progress = {}) {
+  constexpr int D = Flight::State::dimension;
+  const auto basis = section.basis();
+  const std::size_t columns = D == 2 ? section_columns.size() : section3_columns.size();
   return detail::collect(
-      table, flight, initial, particles, collisions, threads, section_columns.size(),
+      table, flight, initial, particles, collisions, threads, columns,
       [&](std::size_t i, const auto& hit, const auto& before, const auto&, std::vector<double>& rows) {
-        const double f0 = line.normal.dot(before.x) - line.offset, f1 = line.normal.dot(hit.point) - line.offset;
-        if (!(f0 < 0 && f1 >= 0)) return;
-        const double t = before.t + (hit.t - before.t) * (f0 / (f0 - f1));
-        const auto at = flight.advance(before, t);
-        const double k = double(rows.size() / section_columns.size() + 1);
-        rows.insert(rows.end(), {double(i), k, line.direction().dot(at.x), line.direction().dot(at.v) / at.v.norm(),
-                                 t, dynamics::energy_of(flight, at, mass)});
+        std::vector<double> times;
+        detail::upward_crossings(flight, before, double(hit.t), section, times);
+        for (const double t : times) {
+          const auto at = flight.advance(before, t);
+          const double k = double(rows.size() / columns + 1);
+          rows.push_back(double(i));
+          rows.push_back(k);
+          for (const auto& e : basis) rows.push_back(e.dot(at.x));
+          for (const auto& e : basis) rows.push_back(e.dot(at.v) / at.v.norm());
+          rows.push_back(t);
+          rows.push_back(dynamics::energy_of(flight, at, mass));
+        }
       },
       progress);
 }

@@ -48,8 +48,13 @@ struct Scene {
   geometry::Shape shape;       // 2-D
   geometry3::Shape3 shape3;    // 3-D
   double mass = 1;
-  /// Microcanonical ensemble at `energy`, unless the initial states were read from a CSV file.
+  /// Microcanonical ensemble at `energy`, unless the initial states were read from a CSV file
+  /// or the particles enter through the shape's exits.
   double energy = 0;
+  /// `initial: {through_exit: {energy: E}}`: the particles enter through the exits the shape
+  /// file lists, at energy E, with the boundary measure cos φ ds dφ (analysis/escape.hpp samples
+  /// them: the exits are phase-space objects).  Where the scene file says so, for its errors.
+  std::optional<geometry::SourceRef> through_exit;
   std::vector<State> initial_states;                // 2-D
   std::vector<State3> initial_states3;               // 3-D
   std::string initial_csv;

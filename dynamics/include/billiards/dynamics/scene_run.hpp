@@ -86,9 +86,14 @@ RunOptions run_options(const Scene& scene, bool verify) {
 
 /// Particle i's initial state: row i of the scene's initial-condition file, or its draw from the
 /// microcanonical ensemble at the scene's energy with ParticleRng(seed, i).  `scene` and `table`
-/// must outlive the returned function.
+/// must outlive the returned function.  A scene whose particles enter through exits is refused:
+/// only the open-table code (analysis/escape.hpp) samples that ensemble.
 template <class Flight>
 auto initial_states(const Scene& scene, const TableFor<Flight>& table, const Flight& flight) {
+  if (scene.through_exit)
+    throw InputError(scene.through_exit->file, scene.through_exit->line,
+                     "particles entering through exits ('through_exit') are for open tables: billiard escape and "
+                     "billiardkit.escape; this command needs 'microcanonical' or 'csv'");
   const auto* given = [&] {
     if constexpr (is_3d<Flight>) return &scene.initial_states3;
     else return &scene.initial_states;

@@ -1,0 +1,144 @@
+// Poincaré sections of curved flights and of 3-D tables (analysis/boundary_map.hpp's
+// line_section): the crossings of a parabola with a line against the quadratic's closed-form
+// roots; the crossings of driven flights (2-D and 3-D) on the section and as many as a fine
+// brute-force scan of each flight finds; `billiard bmap --section` in 3-D.
+#include "cli_helpers.hpp"
+#include "phase_space_helpers.hpp"
+
+#include "billiards/analysis/boundary_map.hpp"
+#include "billiards/dynamics/table3.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+using namespace billiards;
+
+namespace {
+
+double at(const analysis::SectionRows& r, std::size_t i, std::size_t j) { return r.rows[i * r.columns + j]; }
+
+/// The flights of particle `initial` over `collisions` bounces: (state after a bounce, time of
+/// the next hit).
+template <class Table, class Flight>
+std::vector<std::pair<typename Flight::State, double>> flights_of(const Table& table, const Flight& flight,
+                                                                   typename Flight::State s, std::size_t collisions) {
+  std::vector<std::pair<typename Flight::State, double>> out;
+  dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto& bounced) {
+    out.emplace_back(s, double(hit.t));
+    s = bounced;
+  });
+  return out;
+}
+
+/// Upward crossings of n·x = c by a fine scan of each flight (2000 steps), counted.
+template <class Flight, class Section>
+std::size_t brute_force_crossings(const Flight& flight, const typename Flight::State& s, double t_end,
+                                  const Section& section) {
+  std::size_t n = 0;
+  constexpr int steps = 2000;
+  double previous = section.normal.dot(s.x) - section.offset;
+  for (int k = 1; k <= steps; ++k) {
+    const double f = section.normal.dot(flight.advance(s, s.t + (t_end - s.t) * k / steps).x) - section.offset;
+    n += previous < 0 && f >= 0;
+    previous = f;
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("a parabola's crossings of a line: the section against the quadratic's closed-form roots") {
+  const auto sh = bundled_shape("sinai.yaml");
+  const dynamics::Table table(sh.region);
+  const dynamics::ConstantForceFlight gravity{geometry::Vec2(0.3, -2.0)};
+  const geometry::Vec2 n = geometry::Vec2(-0.3, 1).normalized();
+  const analysis::SectionLine line{n, 0.35 * n.y()};  // y = 0.3 x + 0.35
+  const auto initial = dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 3);
+  const std::size_t particles = 6, collisions = 400;
+  const auto r = analysis::line_section(table, gravity, line, initial, particles, collisions, 2);
+  std::vector<double> expected_t, expected_u;
+  for (std::size_t i = 0; i < particles; ++i)
+    for (const auto& [s, t_hit] : flights_of(table, gravity, initial(i), collisions)) {
+      // n·x(τ) − c = A τ²/2 + B τ + C with A = n·a, B = n·v, C = n·x − c; upward: B + A τ > 0.
+      const double A = n.dot(gravity.accel), B = n.dot(s.v), C = n.dot(s.x) - line.offset;
+      const double disc = B * B - 2 * A * C;
+      if (disc < 0) continue;
+      const double q = -(B + std::copysign(std::sqrt(disc), B));  // (the stable pair of roots)
+      std::vector<double> roots{q / A, 2 * C / q};
+      std::sort(roots.begin(), roots.end());
+      for (const double tau : roots)
+        if (tau > 0 && s.t + tau <= t_hit && B + A * tau > 0) {
+          expected_t.push_back(s.t + tau);
+          const auto x = s.x + s.v * tau + 0.5 * gravity.accel * tau * tau;
+          expected_u.push_back(geometry::Vec2(-n.y(), n.x()).dot(x));
+        }
+    }
+  REQUIRE(expected_t.size() > 100);
+  REQUIRE(r.row_count() == expected_t.size());
+  for (std::size_t i = 0; i < r.row_count(); ++i) {
+    CHECK(at(r, i, 4) == Approx(expected_t[i]).epsilon(1e-12));
+    CHECK(at(r, i, 2) == Approx(expected_u[i]).margin(1e-10));
+  }
+}
+
+/// The section of 3 particles x 300 bounces, checked to hold as many crossings as a fine scan
+/// of each flight finds.
+template <class Table, class Flight, class Section, class Initial>
+analysis::SectionRows section_against_scan(const Table& table, const Flight& flight, const Section& section,
+                                           const Initial& initial) {
+  const auto r = analysis::line_section(table, flight, section, initial, 3, 300, 2);
+  std::size_t expected = 0;
+  for (std::size_t i = 0; i < 3; ++i)
+    for (const auto& [s, t_hit] : flights_of(table, flight, initial(i), 300))
+      expected += brute_force_crossings(flight, s, t_hit, section);
+  REQUIRE(expected > 20);
+  CHECK(r.row_count() == expected);
+  return r;
+}
+
+TEST_CASE("driven flights' crossings lie on the section, as many as a fine scan of each flight finds") {
+  const auto scene = bundled_scene("clover-driven.yaml", 3);
+  const dynamics::Table table(scene.shape.region);
+  const dynamics::PeriodicDriveFlight drive{geometry::Vec2(6, 2), 5.0, 0.3};  // slow: curved flights
+  const auto initial = [&](std::size_t i) {
+    return drive.start(dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 5)(i));
+  };
+  const auto r = section_against_scan(table, drive, analysis::SectionLine{geometry::Vec2(0, 1), 0.2}, initial);
+  for (std::size_t i = 0; i < r.row_count(); ++i)  // (u = −x on "y = 0.2")
+    CHECK(table.contains(geometry::Vec2(-at(r, i, 2), 0.2)));
+
+  const auto sh = geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/sinai3.yaml");
+  const dynamics::Table3 table3(sh.region);
+  const dynamics::PeriodicDriveFlight3 drive3{geometry3::Vec3(2, 1, 3), 4.0, 0.1};
+  const auto initial3 = [&](std::size_t i) {
+    return drive3.start(dynamics::microcanonical(table3, dynamics::FreeFlight3{}, 1.0, 5)(i));
+  };
+  const auto r3 = section_against_scan(table3, drive3, analysis::SectionPlane{geometry3::Vec3(0, 0, 1), 0.1}, initial3);
+  for (std::size_t i = 0; i < r3.row_count(); ++i) {
+    // (u1, u2) = (x, y) on "z = 0.1"; the point lies in the table.
+    CHECK(table3.contains(geometry3::Vec3(at(r3, i, 2), at(r3, i, 3), 0.1)));
+    CHECK(std::hypot(at(r3, i, 4), at(r3, i, 5)) <= 1 + 1e-12);
+  }
+}
+
+TEST_CASE("billiard bmap in 3-D: a plane section, the same for 1 and 2 threads; no boundary map without one") {
+  const auto dir = scratch_root() / "bmap3";
+  const std::string cmd = "bmap shapes/3d/sinai3.yaml --section \"z = 0\" --particles 3 --collisions 400 --quiet ";
+  const auto one = billiard(cmd + "--threads 1 --out " + (dir / "t1").string());
+  const auto two = billiard(cmd + "--threads 2 --out " + (dir / "t2").string());
+  INFO(one.output);
+  REQUIRE(one.status == 0);
+  REQUIRE(two.status == 0);
+  CHECK(read_file(dir / "t1" / "section3.csv") == read_file(dir / "t2" / "section3.csv"));
+  CHECK(read_file(dir / "t1" / "section3.csv").rfind("particle,crossing,u1,u2,p1,p2,t,energy\n", 0) == 0);
+  CHECK(std::filesystem::exists(dir / "t1" / "section3.png"));
+  const auto r = billiard("bmap shapes/3d/sinai3.yaml --out " + (dir / "bad").string());
+  CHECK(r.status == 2);
+  CHECK(r.output.find("are 2-D only: for a 3-D table give a plane section, such as --section \"z = 0\"") !=
+        std::string::npos);
+  CHECK(!std::filesystem::exists(dir / "bad"));
+}
