@@ -2,6 +2,7 @@
 #pragma once
 
 #include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry.hpp"
 
 #include <chrono>
@@ -11,16 +12,15 @@
 namespace bench {
 
 /// Collisions per second on one thread (64 particles, interleaved as in ensembles) over about
-/// `collisions` collisions, and the escapes.
-template <class Flight>
-std::pair<double, std::uint64_t> throughput(const billiards::geometry::Region2& region, const Flight& flight,
-                                            double collisions) {
+/// `collisions` collisions, and the escapes; a 2-D or 3-D region (the flight's dimension).
+template <class Region, class Flight>
+std::pair<double, std::uint64_t> throughput(const Region& region, const Flight& flight, double collisions) {
   using namespace billiards;
-  const dynamics::Table table(region);
+  const dynamics::BasicTable<double, Flight::State::dimension> table(region);
   dynamics::RunOptions opt;
   const std::size_t particles = 64;
   // At speed 1 a particle meets a wall every λ on average (in a magnetic field too: Santaló).
-  opt.record_times = {collisions / double(particles) * geometry::mean_free_path(geometry::measures_of(region))};
+  opt.record_times = {collisions / double(particles) * geometry::mean_free_path(measures_of(region))};
   const auto initial = dynamics::microcanonical(table, flight, 1.0, 1);
   const auto start = std::chrono::steady_clock::now();
   const auto res = dynamics::run_ensemble(table, flight, initial, opt, particles, 1);

@@ -21,10 +21,15 @@ void print_prediction(const analysis::Coefficients& c, double dt) {
              pm(c.g1_error), c.g2, pm(c.g2_error), dt, c.g1 * dt, c.g2 * dt);
   fmt::print("  validity: F/(m omega v) = {:.3g}, v/(omega lambda) = {:.3g} (both must be << 1)\n", c.force_ratio,
              c.length_ratio);
-  if (c.cyclotron_radius > 0)
+  if (c.cyclotron_radius > 0 && c.dimension == 2)
     fmt::print("  magnetic field: r_c = {:.3g}, inradius = {:.3g} (every orbit meets the wall when r_c >= inradius), "
                "omega/|Omega| = {:.3g} (must be >> 1)\n",
                c.cyclotron_radius, c.inradius, c.drive_over_cyclotron);
+  if (c.cyclotron_radius > 0 && c.dimension == 3)
+    fmt::print("  magnetic field: r_c = {:.3g} (every orbit with a velocity component along B drifts to the wall; "
+               "only the measure-zero set v perpendicular to B can circle without meeting it), "
+               "omega/|Omega| = {:.3g} (must be >> 1)\n",
+               c.cyclotron_radius, c.drive_over_cyclotron);
   for (const auto& w : c.warnings) fmt::print("  warning: {}\n", w);
 }
 

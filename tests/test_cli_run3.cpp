@@ -93,7 +93,7 @@ TEST_CASE("3-D initial conditions from a CSV file; 3-D scene errors name file an
        ".test3-two-component-force.yaml:5: expected a vector [x, y, z]"},
       {"constant-force", "",
        head + "initial:\n  microcanonical: {energy: 1}\nforce:\n  constant: {amplitude: [0, 0, -1]}\n" + run,
-       ".test3-constant-force.yaml:5: a constant force is not implemented in 3-D"},
+       ".test3-constant-force.yaml:5: a constant force is implemented in 3-D only with a magnetic field"},
   };
   for (const auto& c : cases) {
     if (!c.csv.empty()) write_file(fs::path(BILLIARDS_SOURCE_DIR) / "scenes" / ".test3-bad.csv", c.csv);

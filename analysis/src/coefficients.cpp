@@ -210,18 +210,21 @@ double inradius(const geometry::Region2& region) {
 
 /// The magnetic field's validity statement: Santaló's formula (the collision rate, hence λ,
 /// γ_E, the wall integral's weight) holds for the magnetic flow, and Σ(E) does not depend on B;
-/// but orbits with r_c below the inradius can circle without meeting the wall, and the
-/// averaging over the drive's period needs ω ≫ |Ω|.
+/// but in 2-D orbits with r_c below the inradius can circle without meeting the wall (in 3-D
+/// only those with no velocity along B, a set of measure zero: every other helix drifts to the
+/// wall), and the averaging over the drive's period needs ω ≫ |Ω|.
 void check_magnetic(Coefficients& c, const dynamics::Scene& scene) {
-  const double cyclotron = std::abs(scene.cyclotron_frequency());
+  const double cyclotron = scene.cyclotron_vector().norm();
   c.cyclotron_radius = c.speed / cyclotron;
-  c.inradius = inradius(scene.shape.region);
   c.drive_over_cyclotron = scene.force.omega / cyclotron;
-  if (c.cyclotron_radius < c.inradius)
-    c.warnings.push_back(fmt::format("the cyclotron radius r_c = {:.3g} is below the table's inradius {:.3g}: some "
-                                     "orbits circle without ever meeting the wall, and those particles never diffuse "
-                                     "(the ensemble's mean collision rate is still v/lambda)",
-                                     c.cyclotron_radius, c.inradius));
+  if (scene.dimension == 2) {
+    c.inradius = inradius(scene.shape.region);
+    if (c.cyclotron_radius < c.inradius)
+      c.warnings.push_back(fmt::format("the cyclotron radius r_c = {:.3g} is below the table's inradius {:.3g}: some "
+                                       "orbits circle without ever meeting the wall, and those particles never diffuse "
+                                       "(the ensemble's mean collision rate is still v/lambda)",
+                                       c.cyclotron_radius, c.inradius));
+  }
   if (c.drive_over_cyclotron * validity_threshold < 1)
     c.warnings.push_back(fmt::format("omega/|Omega| = {:.3g} is not large: the drive must be fast against the "
                                      "cyclotron frequency Omega = qB/m for the theory's averaging",

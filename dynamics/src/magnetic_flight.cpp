@@ -1,7 +1,8 @@
 // Exit times of a magnetic flight (magnetic_flight.hpp).  Segments and arcs: closed forms;
 // the only delicate quantities are the discriminant at grazing incidence and the crossing
 // at the start of a flight from a wall, each taken in the form that does not cancel there.
-// Elliptic arcs: the certified scan.
+// Elliptic arcs, and in 3-D planes oblique to the field, triangles and spheres: the certified
+// scan along the helix, its windows from the guiding axis.
 #include "billiards/dynamics/magnetic_flight.hpp"
 
 #include "billiards/dynamics/certified_scan.hpp"
@@ -20,24 +21,16 @@ namespace billiards::dynamics {
 
 namespace {
 
-/// Position and velocity after turning by φ = 2ψ on the circle of angular speed k, from
-/// sin ψ and cos ψ: sin φ = 2 sin ψ cos ψ, 1 − cos φ = 2 sin²ψ (accurate at small φ).
-template <class Real>
-std::pair<Vec2T<Real>, Vec2T<Real>> turned(const BasicState<Real>& s, const Real& k, const Vec2T<Real>& w0,
-                                           const Real& sn, const Real& cs) {
+/// Position and velocity after turning by φ = 2ψ, τ after the start, from sin ψ and cos ψ:
+/// sin φ = 2 sin ψ cos ψ, 1 − cos φ = 2 sin²ψ (accurate at small φ); in 3-D with the drift.
+template <class Real, int D>
+std::pair<VecN<Real, D>, VecN<Real, D>> turned(const Gyration<Real, D>& g, const Real& sn, const Real& cs,
+                                               const Real& tau) {
   const Real sin_phi = 2 * sn * cs, one_minus_cos = 2 * sn * sn, cos_phi = (cs - sn) * (cs + sn);
-  return {s.x + (sin_phi / k) * s.v + (one_minus_cos / k) * w0, cos_phi * s.v + sin_phi * w0};
-}
-
-/// Position and velocity τ after s on the circle of angular speed k, w0 = v0 turned towards
-/// the centre.
-template <class Real>
-std::pair<Vec2T<Real>, Vec2T<Real>> gyrate(const BasicState<Real>& s, const Real& k, const Vec2T<Real>& w0,
-                                           const Real& tau) {
-  using std::cos;
-  using std::sin;
-  const Real half = k * tau / 2;
-  return turned(s, k, w0, sin(half), cos(half));
+  VecN<Real, D> x = g.s.x + (sin_phi * g.inv_k) * g.v_perp + (one_minus_cos * g.inv_k) * g.w0;
+  VecN<Real, D> v = cos_phi * g.v_perp + sin_phi * g.w0;
+  if constexpr (D == 3) x += tau * g.drift, v += g.drift;
+  return {x, v};
 }
 
 /// v turned by a quarter turn in the sense of the gyration (sign of Ω > 0: clockwise).
@@ -83,13 +76,28 @@ Vec2T<Real> outward_half_angle(const Real& F0, const Real& B1, const Real& B2, c
   return u;
 }
 
+/// The outward half angle (as outward_half_angle) through a line, or a plane parallel to the
+/// field, at the signed distance `dist` beyond it, with B1 = n·v⊥ and B2 = n·w0 (n its normal):
+/// the gap is k × the distance, F0 = k dist.
+template <class Real>
+Vec2T<Real> line_half_angle(const Real& k, const Real& dist, const Real& B1, const Real& B2, const Real& speed,
+                            const Real& slack) {
+  using std::abs;
+  const Real F0 = k * dist, near = k * slack;
+  // D = B1² − F0 (F0 + 2 B2): as it stands on the wall; elsewhere as |v⊥|² − (k × distance of
+  // the centre beyond the line)², a product free of cancellation at a graze.
+  const Real mean = F0 + B2;
+  const Real disc = abs(F0) <= near ? Real(B1 * B1 - F0 * (F0 + 2 * B2)) : Real((speed - mean) * (speed + mean));
+  return outward_half_angle(F0, B1, B2, disc, near);
+}
+
 /// The certified scan's sample of a conic wall (an ellipse, or a circle: L = I/r): its gap
 /// f = ±m(|u|² − 1)/2 (u = L(x − c), m the smaller semi-axis: to first order the distance beyond
 /// the wall), f' = ±m u·Lv, and |f''| ≤ m|Lv|² + m|u| |La| ≤ (V² + P A)/m while |v| ≤ V, |a| ≤ A,
 /// |x − c| ≤ P (|L| = 1/m), for `cap` time units.
-template <class Real>
-scan::Sample<Real> conic_sample(const Real& sign, const Real& m, const Vec2T<Real>& u, const Vec2T<Real>& Lv,
-                                const Real& V, const Real& A, const Real& P, const Real& cap, const Vec2T<Real>& x) {
+template <class Real, class Vec>
+scan::Sample<Real, Vec> conic_sample(const Real& sign, const Real& m, const Vec& u, const Vec& Lv, const Real& V,
+                                     const Real& A, const Real& P, const Real& cap, const Vec& x) {
   return {sign * m * (u.squaredNorm() - 1) / 2, sign * m * u.dot(Lv), (V * V + P * A) / m, cap, x};
 }
 
@@ -100,30 +108,76 @@ Real scan_tolerance(const Real& slack, const Real& scale, const Real& V, const R
   return slack + 16 * scan::eps<Real> * (scale + V * tau) * stretch;
 }
 
+
+/// The first time t ≥ τ at which |q0 + t u| ≤ R (`inward`) or ≥ R (outward), or +∞: where the
+/// guiding axis of a helix comes near enough a sphere's centre (or far enough from it) for the
+/// helix to reach the sphere.  Each root in the form that does not cancel.
+double first_reach(const Vec3& q0, const Vec3& u, double R, bool inward, double tau) {
+  const Vec3 q = q0 + tau * u;
+  const double c = q.squaredNorm() - R * R;
+  if (inward ? c <= 0 : c >= 0) return tau;
+  const double a = u.squaredNorm(), b = q.dot(u), disc = b * b - a * c;
+  if (a == 0 || (inward && (b >= 0 || disc < 0))) return never;
+  const double root = std::sqrt(disc);
+  if (inward) return tau + c / (root - b);                    // the nearer root, ahead
+  return tau + (b >= 0 ? -c / (b + root) : (root - b) / a);  // the farther root (c < 0)
+}
+
 }  // namespace
 
-template <class Real>
-Gyration<Real>::Gyration(const BasicMagneticFlight<Real>& flight, const BasicState<Real>& state)
+template <class Real, int D>
+Gyration<Real, D>::Gyration(const BasicMagneticFlight<Real, D>& flight, const BasicState<Real, D>& state)
     : s(state) {
   using std::abs;
   using std::sqrt;
-  k = abs(flight.omega_c);
-  inv_k = 1 / k;
-  w0 = towards_center(state.v, flight.omega_c);
-  speed = sqrt(state.v.squaredNorm());
+  if constexpr (D == 2) {
+    k = abs(flight.omega_c);
+    inv_k = 1 / k;
+    v_perp = state.v;
+    w0 = towards_center(state.v, flight.omega_c);
+  } else {
+    // (Projected with Ω itself, not the rounded unit vector b, and w0 scaled to |v⊥|: a fixed
+    // rounding of |b| would otherwise bias |v(τ)|² by the same sign in every flight.)
+    const Real k2 = flight.omega_c.squaredNorm();
+    k = sqrt(k2);
+    inv_k = 1 / k;
+    axis = flight.omega_c * inv_k;
+    drift = (state.v.dot(flight.omega_c) / k2) * flight.omega_c;
+    v_perp = state.v - drift;
+    w0 = v_perp.cross(flight.omega_c);
+  }
+  speed = sqrt(v_perp.squaredNorm());
+  if constexpr (D == 3) {
+    if (speed > 0) w0 *= speed / w0.norm();
+  }
   center = state.x + w0 * inv_k;
   radius = speed * inv_k;
 }
 
-template <class Real>
-auto Gyration<Real>::position_at_half_angle(const V& u) const -> V {
+template <class Real, int D>
+auto Gyration<Real, D>::at(const Real& tau) const -> std::pair<V, V> {
+  using std::cos;
+  using std::sin;
+  const Real half = k * tau / 2;
+  return turned(*this, Real(sin(half)), Real(cos(half)), tau);
+}
+
+template <class Real, int D>
+Real Gyration<Real, D>::period() const {
+  return boost::math::constants::two_pi<Real>() * inv_k;
+}
+
+template <class Real, int D>
+auto Gyration<Real, D>::position_at_half_angle(const Vec2T<Real>& u) const -> V
+  requires(D == 2) {
   const Real scale = 2 * inv_k / u.squaredNorm();  // (2/k) / |u|², with sin ψ cos ψ = u_x u_y/|u|²
   return s.x + scale * (u.x() * u.y() * s.v + u.y() * u.y() * w0);
 }
 
-template <class Real>
-auto Gyration<Real>::first_hit(const BasicTable<Real>& table, const Real& t_end) const
-    -> FlightHit<BasicMagneticFlight<Real>> {
+template <class Real, int D>
+auto Gyration<Real, D>::first_hit(const BasicTable<Real>& table, const Real& t_end) const
+    -> FlightHit<BasicMagneticFlight<Real>>
+  requires(D == 2) {
   using std::sqrt;
   FlightHit<BasicMagneticFlight<Real>> hit;
   hit.t = t_end;
@@ -131,18 +185,20 @@ auto Gyration<Real>::first_hit(const BasicTable<Real>& table, const Real& t_end)
   if (!hit.found()) return hit;
   hit.state = s;
   hit.state.t = hit.t;
+  const Real tau = hit.t - s.t;
   if (hit.t == found_t) {
     const Real norm = sqrt(found_u.squaredNorm());
-    std::tie(hit.state.x, hit.state.v) = turned(s, k, w0, Real(found_u.y() / norm), Real(found_u.x() / norm));
+    std::tie(hit.state.x, hit.state.v) = turned(*this, Real(found_u.y() / norm), Real(found_u.x() / norm), tau);
   } else {  // (an elliptic arc's scan)
-    std::tie(hit.state.x, hit.state.v) = gyrate(s, k, w0, Real(hit.t - s.t));
+    std::tie(hit.state.x, hit.state.v) = at(tau);
   }
   return hit;
 }
 
-template <class Real>
+template <class Real, int D>
 template <class Wall>
-bool Gyration<Real>::may_reach(const Wall& w, const Real& t_end) const {
+bool Gyration<Real, D>::may_reach(const Wall& w, const Real& t_end) const
+  requires(D == 2) {
   const Real margin = 16 * scan::eps<Real> * (center.template lpNorm<Eigen::Infinity>() + radius + w.bound_radius);
   const Real reach = radius + w.bound_radius + margin;
   if ((center - w.bound_center).squaredNorm() > reach * reach) return false;
@@ -152,22 +208,18 @@ bool Gyration<Real>::may_reach(const Wall& w, const Real& t_end) const {
   return (s.x - w.bound_center).squaredNorm() <= travel * travel;
 }
 
-template <class Real>
-Real Gyration<Real>::exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const {
+template <class Real, int D>
+Real Gyration<Real, D>::exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const
+  requires(D == 2) {
   if (!may_reach(w, t_end)) return never;
   // F = k × (distance beyond the line): F0 now, B1 = n·v0, B2 = n·w0; B1² + B2² = |v0|².
-  const Real F0 = k * w.normal.dot(s.x - w.a), B1 = w.normal.dot(s.v), B2 = w.normal.dot(w0);
-  const Real near = k * w.slack;
-  using std::abs;
-  // D = B1² − F0 (F0 + 2 B2): as it stands on the wall; elsewhere as |v0|² − (k × distance of the
-  // centre beyond the line)², a product free of cancellation at a graze.
-  const Real mean = F0 + B2;
-  const Real D = abs(F0) <= near ? Real(B1 * B1 - F0 * (F0 + 2 * B2)) : Real((speed - mean) * (speed + mean));
-  return exit_at(*this, w, outward_half_angle(F0, B1, B2, D, near), t_end);
+  return exit_at(*this, w, line_half_angle(k, Real(w.normal.dot(s.x - w.a)), Real(w.normal.dot(s.v)),
+                                           Real(w.normal.dot(w0)), speed, w.slack), t_end);
 }
 
-template <class Real>
-Real Gyration<Real>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) const {
+template <class Real, int D>
+Real Gyration<Real, D>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) const
+  requires(D == 2) {
   if (!may_reach(w, t_end)) return never;
   // F = ±(k/2)(|x − c|² − r²), + for a focusing arc: beyond the wall is outside its circle.
   const Real sign = w.focusing ? 1 : -1;
@@ -176,20 +228,21 @@ Real Gyration<Real>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) c
              B2 = sign * (p.dot(w0) + speed * radius);
   const Real near = k * w.radius * w.slack;
   using std::abs;
-  Real D;
+  Real disc;
   if (abs(F0) <= near) {
-    D = B1 * B1 - F0 * (F0 + 2 * B2);
+    disc = B1 * B1 - F0 * (F0 + 2 * B2);
   } else {
     // (k/2)² ((r + ρ)² − d²)(d² − (r − ρ)²), d the distance between the centres: each factor
     // a sum of three lengths, zero at a graze.
     const Real d = (center - w.center).norm(), r = w.radius, rho = radius;
-    D = k * k / 4 * ((r - d + rho) * (r + d - rho)) * ((d + rho - r) * (d + rho + r));
+    disc = k * k / 4 * ((r - d + rho) * (r + d - rho)) * ((d + rho - r) * (d + rho + r));
   }
-  return exit_at(*this, w, outward_half_angle(F0, B1, B2, D, near), t_end);
+  return exit_at(*this, w, outward_half_angle(F0, B1, B2, disc, near), t_end);
 }
 
-template <class Real>
-Real Gyration<Real>::exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const {
+template <class Real, int D>
+Real Gyration<Real, D>::exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const
+  requires(D == 2) {
   using std::max;
   using std::min;
   if (!may_reach(w, t_end)) return never;
@@ -197,17 +250,106 @@ Real Gyration<Real>::exit_time(const BasicEllipticArcWall<Real>& w, const Real& 
   const Real sign = w.focusing ? 1 : -1, m = min(w.a, w.b);
   const Real P = (s.x - w.center).norm() + 2 * radius + max(w.a, w.b);
   auto sample = [&](const Real& tau) {
-    const auto [x, v] = gyrate(s, k, w0, tau);
+    const auto [x, v] = at(tau);
     return conic_sample(sign, m, w.to_unit(x), V(w.map * v), speed, Real(k * speed), P, Real(never), x);
   };
   auto tolerance = [&](const Real& tau) { return scan_tolerance(w.slack, P, speed, tau, Real(P / m)); };
   auto earliest = [](const Real& tau) { return tau; };
   auto in_span = [&](const V& x) { return w.within_span(x); };
   // One turn holds every crossing the orbit will ever make.
-  const Real turn = boost::math::constants::two_pi<Real>() / k;
+  const Real turn = period();
   const Real tau_end = t_end == never ? turn : min(Real(t_end - s.t), turn);
   const Real tau = scan::first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
   return tau == never ? Real(never) : Real(s.t + tau);
+}
+
+// ---- Helices (3-D) ---------------------------------------------------------------------------
+
+template <class Real, int D>
+template <class InSpan>
+double Gyration<Real, D>::plane_exit(const Vec3& n, const Vec3& a, double slack, double t_end, bool spanless,
+                                     InSpan in_span) const
+  requires(D == 3) {
+  const double along = n.dot(drift);  // the guide's rate towards the plane
+  const double F0 = n.dot(s.x - a);
+  // Across the field (n ∥ b): the gap grows linearly, as for a straight flight.
+  if (n.cross(axis).isZero(0)) {
+    if (!(along > 0) || F0 > slack) return never;  // moving in, or beyond: elsewhere
+    const double tau = F0 >= 0 ? 0 : -F0 / along;
+    if (s.t + tau > t_end || !in_span(at(tau).first)) return never;
+    return s.t + tau;
+  }
+  // Along the field (n ⟂ b) and without a span: the circle's closed form (the 2-D segment's),
+  // one crossing per turn whatever the drift along the plane.
+  if (spanless && n.dot(axis) == 0) {
+    const Vec2 u = line_half_angle(k, F0, n.dot(v_perp), n.dot(w0), speed, slack);
+    if (u.x() == 0 && u.y() == 0) return never;
+    const double t = s.t + 2 * std::atan2(u.y(), u.x()) * inv_k;
+    return t > t_end ? never : t;
+  }
+  // Otherwise the scan: |f''| = |n·(v⊥ × Ω)| ≤ k |v⊥| |n⊥|, and the gap stays within r_c |n⊥| of
+  // the guide's, F0 + n·(w0/k) + along τ.
+  const double across = (n - n.dot(axis) * axis).norm(), M = k * speed * across, reach = radius * across;
+  const double guide0 = n.dot(center - a), V = s.v.norm();
+  const double scale = s.x.cwiseAbs().maxCoeff() + a.cwiseAbs().maxCoeff() + 2 * radius;
+  auto tolerance = [&](double tau) { return scan_tolerance(slack, scale, V, tau, 1.0); };
+  auto sample = [&](double tau) {
+    const auto [x, v] = at(tau);
+    return scan::Sample<double, Vec3>{n.dot(x - a), n.dot(v), M, never, x};
+  };
+  auto earliest = [&](double tau) {
+    const double band = reach + 2 * tolerance(tau);
+    if (guide0 + along * tau + band >= 0) return tau;
+    return along > 0 ? std::max(tau, (-band - guide0) / along) : never;
+  };
+  // (Without a drift towards the plane the gap is periodic: one turn holds every crossing.)
+  const double tau_end = along == 0 ? std::min(t_end - s.t, period()) : t_end - s.t;
+  const double tau = scan::first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
+  return tau == never ? never : s.t + tau;
+}
+
+template <class Real, int D>
+double Gyration<Real, D>::exit_time(const PlaneWall& w, double t_end) const
+  requires(D == 3) {
+  return plane_exit(w.normal, Vec3(w.normal * w.offset), w.slack, t_end, true, [](const Vec3&) { return true; });
+}
+
+template <class Real, int D>
+double Gyration<Real, D>::exit_time(const TriangleWall& w, double t_end) const
+  requires(D == 3) {
+  return plane_exit(w.normal, w.p[0], w.slack, t_end, false, [&](const Vec3& x) { return w.within_span(x); });
+}
+
+template <class Real, int D>
+double Gyration<Real, D>::exit_time(const SphereWall& w, double t_end) const
+  requires(D == 3) {
+  // |v| = V and |a| = k|v⊥| all along; |x − c| ≤ ρ + V h over a step h = (ρ + r)/V.
+  const double sign = w.focusing ? 1 : -1, r = w.radius, V = s.v.norm();
+  const double scale = (s.x - w.center).norm() + r + 2 * radius;
+  auto tolerance = [&](double tau) { return scan_tolerance(w.slack, scale, V, tau, scale / r); };
+  auto sample = [&](double tau) {
+    const auto [x, v] = at(tau);
+    const Vec3 p = x - w.center;
+    const double rho = p.norm(), cap = (rho + r) / V;
+    return conic_sample(sign, r, Vec3(p / r), Vec3(v / r), V, k * speed, 2 * rho + r, cap, x);
+  };
+  // The helix is within r_c of its guiding axis: it can enter a hole only where the axis is
+  // within r + r_c of the centre, and leave a ball only where the axis is beyond r − r_c.
+  auto earliest = [&](double tau) {
+    const double margin = 2 * tolerance(tau);
+    if (!w.focusing) return first_reach(Vec3(center - w.center), drift, r + radius + margin, true, tau);
+    const double inner = r - radius - margin;
+    return inner <= 0 ? tau : first_reach(Vec3(center - w.center), drift, inner, false, tau);
+  };
+  const double tau_end = drift.isZero(0) ? std::min(t_end - s.t, period()) : t_end - s.t;
+  const double tau = scan::first_outward_crossing(sample, earliest, [](const Vec3&) { return true; }, tolerance, tau_end);
+  return tau == never ? never : s.t + tau;
+}
+
+template <class Real, int D>
+Tube3 Gyration<Real, D>::tube() const
+  requires(D == 3) {
+  return {center, drift, radius + 16 * scan::eps<double> * (center.cwiseAbs().maxCoeff() + radius)};
 }
 
 // ---- The field and a uniform force ---------------------------------------------------------
@@ -238,35 +380,74 @@ Complex<Real> double_ramp(const Real& lambda, const Real& mu, const Real& tau) {
   return (std::polar(Real(1), Real(mu * tau)) * ramp(lambda, tau) - ramp(Real(lambda + mu), tau)) / Complex<Real>(0, mu);
 }
 
+/// The plane across the field as complex numbers: z ↦ z.x e1 + z.y e2 (2-D: the plane itself),
+/// with e1 × e2 = b, so that the motion across the field is the 2-D one with Ω = |Ω| > 0.
+template <class Real, int D>
+struct FieldFrame {
+  Real W;       // Ω in the plane's orientation (2-D: signed)
+  VecN<Real, D> b, e1, e2;
+  explicit FieldFrame(const Cyclotron<Real, D>& omega_c) {
+    if constexpr (D == 2) {
+      W = omega_c;
+    } else {
+      W = omega_c.norm();
+      b = omega_c / W;
+      e1 = b.unitOrthogonal();
+      e2 = b.cross(e1);
+    }
+  }
+  Complex<Real> across(const VecN<Real, D>& v) const {
+    if constexpr (D == 2) return {v.x(), v.y()};
+    else return {v.dot(e1), v.dot(e2)};
+  }
+  Real along(const VecN<Real, D>& v) const {
+    if constexpr (D == 2) return 0;
+    else return v.dot(b);
+  }
+  VecN<Real, D> vector(const Complex<Real>& z, const Real& along) const {
+    if constexpr (D == 2) return {z.real(), z.imag()};
+    else return z.real() * e1 + z.imag() * e2 + along * b;
+  }
+};
+
 /// Position and velocity τ after s (the header's formulas; the drive's phase from s.t).
-template <class Real>
-std::pair<Vec2T<Real>, Vec2T<Real>> drifted(const BasicMagneticDriveFlight<Real>& f, const BasicState<Real>& s,
-                                            const Real& tau) {
+template <class Real, int D>
+std::pair<VecN<Real, D>, VecN<Real, D>> drifted(const BasicMagneticDriveFlight<Real, D>& f, const FieldFrame<Real, D>& frame,
+                                                const BasicState<Real, D>& s, const Real& tau) {
   using C = Complex<Real>;
-  const C v0(s.v.x(), s.v.y()), half_a = C(f.accel.x(), f.accel.y()) / Real(2);
-  const Real W = f.omega_c, up = W + f.omega, down = W - f.omega;
+  const C v0 = frame.across(s.v), half_a = frame.across(f.accel) / Real(2);
+  const Real W = frame.W, up = W + f.omega, down = W - f.omega;
   const C e = std::polar(Real(1), Real(f.omega * s.t + f.phase0));
   const C v = std::polar(Real(1), Real(-W * tau)) * (v0 + half_a * (e * ramp(up, tau) + std::conj(e) * ramp(down, tau)));
   const C dx = ramp(Real(-W), tau) * v0 +
                half_a * (e * double_ramp(up, Real(-W), tau) + std::conj(e) * double_ramp(down, Real(-W), tau));
-  return {s.x + Vec2T<Real>(dx.real(), dx.imag()), Vec2T<Real>(v.real(), v.imag())};
+  // Along the field: v∥0 + a∥ Re(e^{iθ} E(ω, τ)), and its integral with G(ω, 0, τ).
+  Real v_along = 0, x_along = 0;
+  if constexpr (D == 3) {
+    const Real u0 = frame.along(s.v), a = frame.along(f.accel);
+    v_along = u0 + a * (e * ramp(f.omega, tau)).real();
+    x_along = u0 * tau + a * (e * double_ramp(f.omega, Real(0), tau)).real();
+  }
+  return {s.x + frame.vector(dx, x_along), frame.vector(v, v_along)};
 }
 
 /// The first outward crossing before t_end of the gap `gap(x, v, V, A, cap)` (a scan::Sample),
 /// sampled along the flight from s, where `tolerance(τ, V)` is its rounding band.  The bounds
-/// hold over a step of at most the faster of the two periods, with V the speed bound at its end.
-template <class Real, class Gap, class Tolerance, class InSpan>
-Real driven_exit(const BasicMagneticDriveFlight<Real>& f, const BasicState<Real>& s, const Real& t_end, Gap gap,
+/// hold over a step of at most one cyclotron period, with V the speed bound at its end (away
+/// from the resonance the bound saturates: a long step costs no accuracy).
+template <class Real, int D, class Gap, class Tolerance, class InSpan>
+Real driven_exit(const BasicMagneticDriveFlight<Real, D>& f, const BasicState<Real, D>& s, const Real& t_end, Gap gap,
                  Tolerance tolerance, InSpan in_span) {
   using std::abs;
-  using std::max;
   if (t_end == never) throw std::logic_error("a magnetic flight under a force needs a search horizon");
-  const Real cap = boost::math::constants::two_pi<Real>() / max(Real(abs(f.omega_c)), f.omega);
+  const FieldFrame<Real, D> frame(f.omega_c);
+  const Real k = abs(frame.W);
+  const Real cap = boost::math::constants::two_pi<Real>() / k;
   const Real a = f.accel.norm();
   auto sample = [&](const Real& tau) {
-    const auto [x, v] = drifted(f, s, tau);
+    const auto [x, v] = drifted(f, frame, s, tau);
     const Real V = f.speed_bound(s, Real(tau + cap));
-    return gap(x, v, V, Real(abs(f.omega_c) * V + a), cap);
+    return gap(x, v, V, Real(k * V + a), cap);
   };
   auto earliest = [](const Real& tau) { return tau; };
   auto tol = [&](const Real& tau) { return tolerance(tau, f.speed_bound(s, tau)); };
@@ -274,82 +455,183 @@ Real driven_exit(const BasicMagneticDriveFlight<Real>& f, const BasicState<Real>
   return tau == never ? Real(never) : Real(s.t + tau);
 }
 
+/// The gap beyond the plane n·(x − a) = 0 (a segment's line, a plane, a triangle's plane) for
+/// driven_exit, and its rounding band (`scale`: the size of the positions).
+template <class Real, class Vec>
+auto plane_gap(const Vec& n, const Vec& a) {
+  return [n, a](const Vec& x, const Vec& v, const Real&, const Real& A, const Real& cap) {
+    return scan::Sample<Real, Vec>{n.dot(x - a), n.dot(v), A, cap, x};
+  };
+}
+template <class Real>
+auto plane_tolerance(const Real& slack, const Real& scale) {
+  return [slack, scale](const Real& tau, const Real& V) { return scan_tolerance(slack, scale, V, tau, Real(1)); };
+}
+
+/// The gap beyond a circle or sphere (centre c, radius r; `sign` + for a focusing wall), and its
+/// rounding band, for driven_exit.
+template <class Real, class Vec>
+auto round_gap(const Real& sign, const Vec& c, const Real& r) {
+  return [sign, c, r](const Vec& x, const Vec& v, const Real& V, const Real& A, const Real& cap) {
+    using std::min;
+    const Vec p = x - c;
+    const Real rho = p.norm(), h = min(cap, Real((rho + r) / V));  // (|x − c| ≤ 2ρ + r over h)
+    return conic_sample(sign, r, Vec(p / r), Vec(v / r), V, A, Real(rho + V * h), h, x);
+  };
+}
+template <class Real>
+auto round_tolerance(const Real& slack, const Real& scale, const Real& r) {
+  return [slack, scale, r](const Real& tau, const Real& V) { return scan_tolerance(slack, scale, V, tau, Real(scale / r)); };
+}
+
+const auto everywhere = [](const auto&) { return true; };
+
 }  // namespace
 
-template <class Real>
-auto BasicMagneticDriveFlight<Real>::advance(const State& s, const Real& t) const -> State {
+template <class Real, int D>
+auto BasicMagneticDriveFlight<Real, D>::advance(const State& s, const Real& t) const -> State {
   State r = s;
-  std::tie(r.x, r.v) = drifted(*this, s, Real(t - s.t));
+  std::tie(r.x, r.v) = drifted(*this, FieldFrame<Real, D>(omega_c), s, Real(t - s.t));
   r.t = t;
   return r;
 }
 
-template <class Real>
-Real BasicMagneticDriveFlight<Real>::speed_bound(const State& s, const Real& tau) const {
+template <class Real, int D>
+Real BasicMagneticDriveFlight<Real, D>::speed_bound(const State& s, const Real& tau) const {
   using std::abs;
   using std::min;
+  const FieldFrame<Real, D> frame(omega_c);
   // |E(λ, τ)| ≤ min(τ, 2/|λ|).
   auto ramp_bound = [&](const Real& lambda) { return lambda == 0 ? tau : min(tau, Real(2 / abs(lambda))); };
-  return s.v.norm() + accel.norm() / 2 * (ramp_bound(omega_c + omega) + ramp_bound(omega_c - omega));
+  const Real along = abs(frame.along(accel)), across = abs(frame.across(accel));
+  return s.v.norm() + across / 2 * (ramp_bound(frame.W + omega) + ramp_bound(frame.W - omega)) +
+         along * ramp_bound(omega);
 }
 
-template <class Real>
-Real BasicMagneticDriveFlight<Real>::exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
+template <class Real, int D>
+Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const
+  requires(D == 2) {
   using std::abs;
   const Real scale = abs(w.normal.dot(s.x - w.a)) + w.bound_radius;
-  auto gap = [&](const Vec2T<Real>& x, const Vec2T<Real>& v, const Real&, const Real& A, const Real& cap) {
-    return scan::Sample<Real>{w.normal.dot(x - w.a), w.normal.dot(v), A, cap, x};
-  };
-  auto tolerance = [&](const Real& tau, const Real& V) { return scan_tolerance(w.slack, scale, V, tau, Real(1)); };
-  return driven_exit(*this, s, t_end, gap, tolerance, [&](const Vec2T<Real>& x) { return w.within_span(x); });
+  return driven_exit(*this, s, t_end, plane_gap<Real>(w.normal, w.a), plane_tolerance(w.slack, scale),
+                     [&](const Vec2T<Real>& x) { return w.within_span(x); });
 }
 
-template <class Real>
-Real BasicMagneticDriveFlight<Real>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
+template <class Real, int D>
+Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const
+  requires(D == 2) {
   const Real sign = w.focusing ? 1 : -1, r = w.radius, scale = (s.x - w.center).norm() + r;
-  auto gap = [&](const Vec2T<Real>& x, const Vec2T<Real>& v, const Real& V, const Real& A, const Real& cap) {
-    const Vec2T<Real> p = x - w.center;
-    return conic_sample(sign, r, Vec2T<Real>(p / r), Vec2T<Real>(v / r), V, A, Real(p.norm() + V * cap), cap, x);
-  };
-  auto tolerance = [&](const Real& tau, const Real& V) { return scan_tolerance(w.slack, scale, V, tau, Real(scale / r)); };
-  return driven_exit(*this, s, t_end, gap, tolerance, [&](const Vec2T<Real>& x) { return w.within_span(x); });
+  return driven_exit(*this, s, t_end, round_gap(sign, w.center, r), round_tolerance(w.slack, scale, r),
+                     [&](const Vec2T<Real>& x) { return w.within_span(x); });
 }
 
-template <class Real>
-Real BasicMagneticDriveFlight<Real>::exit_time(const State& s, const BasicEllipticArcWall<Real>& w,
-                                               const Real& t_end) const {
+template <class Real, int D>
+Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const BasicEllipticArcWall<Real>& w,
+                                                  const Real& t_end) const
+  requires(D == 2) {
   using std::max;
   using std::min;
   const Real sign = w.focusing ? 1 : -1, m = min(w.a, w.b), scale = (s.x - w.center).norm() + max(w.a, w.b);
   auto gap = [&](const Vec2T<Real>& x, const Vec2T<Real>& v, const Real& V, const Real& A, const Real& cap) {
-    return conic_sample(sign, m, w.to_unit(x), Vec2T<Real>(w.map * v), V, A, Real((x - w.center).norm() + V * cap), cap, x);
+    const Real rho = (x - w.center).norm(), h = min(cap, Real((rho + m) / V));
+    return conic_sample(sign, m, w.to_unit(x), Vec2T<Real>(w.map * v), V, A, Real(rho + V * h), h, x);
   };
-  auto tolerance = [&](const Real& tau, const Real& V) { return scan_tolerance(w.slack, scale, V, tau, Real(scale / m)); };
-  return driven_exit(*this, s, t_end, gap, tolerance, [&](const Vec2T<Real>& x) { return w.within_span(x); });
+  return driven_exit(*this, s, t_end, gap, round_tolerance(w.slack, scale, m),
+                     [&](const Vec2T<Real>& x) { return w.within_span(x); });
 }
 
-template <class Real>
-auto BasicMagneticFlight<Real>::advance(const State& s, const Real& t) const -> State {
-  using std::abs;
+template <class Real, int D>
+double BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const PlaneWall& w, double t_end) const
+  requires(D == 3) {
+  const Vec3 a = w.normal * w.offset;
+  const double scale = s.x.cwiseAbs().maxCoeff() + a.cwiseAbs().maxCoeff();
+  return driven_exit(*this, s, t_end, plane_gap<double>(w.normal, a), plane_tolerance(w.slack, scale), everywhere);
+}
+
+template <class Real, int D>
+double BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const TriangleWall& w, double t_end) const
+  requires(D == 3) {
+  const double scale = s.x.cwiseAbs().maxCoeff() + w.p[0].cwiseAbs().maxCoeff();
+  return driven_exit(*this, s, t_end, plane_gap<double>(w.normal, w.p[0]), plane_tolerance(w.slack, scale),
+                     [&](const Vec3& x) { return w.within_span(x); });
+}
+
+template <class Real, int D>
+double BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const SphereWall& w, double t_end) const
+  requires(D == 3) {
+  const double sign = w.focusing ? 1 : -1, r = w.radius, scale = (s.x - w.center).norm() + r;
+  return driven_exit(*this, s, t_end, round_gap(sign, w.center, r), round_tolerance(w.slack, scale, r), everywhere);
+}
+
+template <class Real, int D>
+auto BasicMagneticFlight<Real, D>::advance(const State& s, const Real& t) const -> State {
   State r = s;
-  std::tie(r.x, r.v) = gyrate(s, Real(abs(omega_c)), towards_center(s.v, omega_c), Real(t - s.t));
+  std::tie(r.x, r.v) = scan_from(s).at(Real(t - s.t));
   r.t = t;
   return r;
 }
 
-template <class Real>
-Real BasicMagneticFlight<Real>::period() const {
+template <class Real, int D>
+Real BasicMagneticFlight<Real, D>::period() const {
   using std::abs;
-  return boost::math::constants::two_pi<Real>() / abs(omega_c);
+  if constexpr (D == 2) return boost::math::constants::two_pi<Real>() / abs(omega_c);
+  else return boost::math::constants::two_pi<Real>() / omega_c.norm();
 }
 
-template struct Gyration<double>;
-template struct Gyration<long double>;
-template struct Gyration<Reference>;
-template struct BasicMagneticFlight<double>;
-template struct BasicMagneticFlight<long double>;
-template struct BasicMagneticFlight<Reference>;
-template struct BasicMagneticDriveFlight<double>;
-template struct BasicMagneticDriveFlight<long double>;
+// (Member by member: clang instantiates a whole class's members of the other dimension too.)
+template Gyration<double, 2>::Gyration(const BasicMagneticFlight<double>&, const BasicState<double>&);
+template std::pair<Vec2T<double>, Vec2T<double>> Gyration<double, 2>::at(const double&) const;
+template double Gyration<double, 2>::period() const;
+template double Gyration<double, 2>::exit_time(const BasicSegmentWall<double>&, const double&) const;
+template double Gyration<double, 2>::exit_time(const BasicArcWall<double>&, const double&) const;
+template double Gyration<double, 2>::exit_time(const BasicEllipticArcWall<double>&, const double&) const;
+template FlightHit<BasicMagneticFlight<double>> Gyration<double, 2>::first_hit(const BasicTable<double>&, const double&) const;
+template Vec2T<double> Gyration<double, 2>::position_at_half_angle(const Vec2T<double>&) const;
+template BasicState<double> BasicMagneticFlight<double>::advance(const State&, const double&) const;
+template double BasicMagneticFlight<double>::period() const;
+template Gyration<long double, 2>::Gyration(const BasicMagneticFlight<long double>&, const BasicState<long double>&);
+template std::pair<Vec2T<long double>, Vec2T<long double>> Gyration<long double, 2>::at(const long double&) const;
+template long double Gyration<long double, 2>::period() const;
+template long double Gyration<long double, 2>::exit_time(const BasicSegmentWall<long double>&, const long double&) const;
+template long double Gyration<long double, 2>::exit_time(const BasicArcWall<long double>&, const long double&) const;
+template long double Gyration<long double, 2>::exit_time(const BasicEllipticArcWall<long double>&, const long double&) const;
+template FlightHit<BasicMagneticFlight<long double>> Gyration<long double, 2>::first_hit(const BasicTable<long double>&, const long double&) const;
+template Vec2T<long double> Gyration<long double, 2>::position_at_half_angle(const Vec2T<long double>&) const;
+template BasicState<long double> BasicMagneticFlight<long double>::advance(const State&, const long double&) const;
+template long double BasicMagneticFlight<long double>::period() const;
+template Gyration<Reference, 2>::Gyration(const BasicMagneticFlight<Reference>&, const BasicState<Reference>&);
+template std::pair<Vec2T<Reference>, Vec2T<Reference>> Gyration<Reference, 2>::at(const Reference&) const;
+template Reference Gyration<Reference, 2>::period() const;
+template Reference Gyration<Reference, 2>::exit_time(const BasicSegmentWall<Reference>&, const Reference&) const;
+template Reference Gyration<Reference, 2>::exit_time(const BasicArcWall<Reference>&, const Reference&) const;
+template Reference Gyration<Reference, 2>::exit_time(const BasicEllipticArcWall<Reference>&, const Reference&) const;
+template FlightHit<BasicMagneticFlight<Reference>> Gyration<Reference, 2>::first_hit(const BasicTable<Reference>&, const Reference&) const;
+template Vec2T<Reference> Gyration<Reference, 2>::position_at_half_angle(const Vec2T<Reference>&) const;
+template BasicState<Reference> BasicMagneticFlight<Reference>::advance(const State&, const Reference&) const;
+template Reference BasicMagneticFlight<Reference>::period() const;
+template BasicState<double> BasicMagneticDriveFlight<double>::advance(const State&, const double&) const;
+template double BasicMagneticDriveFlight<double>::speed_bound(const State&, const double&) const;
+template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicSegmentWall<double>&, const double&) const;
+template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicArcWall<double>&, const double&) const;
+template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicEllipticArcWall<double>&, const double&) const;
+template BasicState<long double> BasicMagneticDriveFlight<long double>::advance(const State&, const long double&) const;
+template long double BasicMagneticDriveFlight<long double>::speed_bound(const State&, const long double&) const;
+template long double BasicMagneticDriveFlight<long double>::exit_time(const State&, const BasicSegmentWall<long double>&, const long double&) const;
+template long double BasicMagneticDriveFlight<long double>::exit_time(const State&, const BasicArcWall<long double>&, const long double&) const;
+template long double BasicMagneticDriveFlight<long double>::exit_time(const State&, const BasicEllipticArcWall<long double>&, const long double&) const;
+template Gyration<double, 3>::Gyration(const MagneticFlight3&, const State3&);
+template std::pair<Vec3, Vec3> Gyration<double, 3>::at(const double&) const;
+template double Gyration<double, 3>::period() const;
+template double Gyration<double, 3>::exit_time(const PlaneWall&, double) const;
+template double Gyration<double, 3>::exit_time(const TriangleWall&, double) const;
+template double Gyration<double, 3>::exit_time(const SphereWall&, double) const;
+template Tube3 Gyration<double, 3>::tube() const;
+template State3 MagneticFlight3::advance(const State&, const double&) const;
+template double MagneticFlight3::period() const;
+template State3 MagneticDriveFlight3::advance(const State&, const double&) const;
+template double MagneticDriveFlight3::speed_bound(const State&, const double&) const;
+template double MagneticDriveFlight3::exit_time(const State&, const PlaneWall&, double) const;
+template double MagneticDriveFlight3::exit_time(const State&, const TriangleWall&, double) const;
+template double MagneticDriveFlight3::exit_time(const State&, const SphereWall&, double) const;
 
 }  // namespace billiards::dynamics

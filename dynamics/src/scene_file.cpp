@@ -66,7 +66,6 @@ Force read_force(const SceneReader& r, const Expressions& expr, const YAML::Node
   }
   if (const YAML::Node c = n["constant"]) {
     r.expect_keys(c, {"amplitude"}, "a constant force");
-    if (dimension == 3) r.fail(c, "a constant force is not implemented in 3-D (periodic and none are)");
     f.kind = Force::Kind::constant;
     f.amplitude = r.vector(r.required(c, "amplitude", "a constant force"), dimension);
     return f;
@@ -86,18 +85,17 @@ Force read_force(const SceneReader& r, const Expressions& expr, const YAML::Node
   return f;
 }
 
-/// magnetic: {B: value}, the field perpendicular to the plane; in 3-D B is a vector (refused
-/// until 3-D flights have a field).
-double read_magnetic(const SceneReader& r, const YAML::Node& n, int dimension) {
+/// magnetic: {B: value}, the field perpendicular to the plane, in 2-D (returned as (0, 0, B));
+/// {B: [Bx, By, Bz]} in 3-D.
+Eigen::Vector3d read_magnetic(const SceneReader& r, const YAML::Node& n, int dimension) {
   r.expect_keys(n, {"B"}, "'magnetic'");
   const YAML::Node b = r.required(n, "B", "'magnetic'");
   if (dimension == 2) {
     if (!b.IsScalar()) r.fail(b, "in 2-D the magnetic field is perpendicular to the plane: B is a number, not a vector");
-    return r.number(b);
+    return {0, 0, r.number(b)};
   }
   if (b.IsScalar()) r.fail(b, "in 3-D the magnetic field is a vector [Bx, By, Bz], not a number");
-  r.vector(b, 3);
-  r.fail(n, "a magnetic field is implemented in 2-D only");
+  return r.vector(b, 3);
 }
 
 /// potential: {expression: U, gradient: [dU/dx, dU/dy]}, the gradient optional: when it is
@@ -293,6 +291,9 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   } else if (const YAML::Node q = doc["charge"]) {
     r.fail(q, "'charge' is the charge in a magnetic field: the scene has no 'magnetic'");
   }
+  if (scene.dimension == 3 && scene.force.kind == Force::Kind::constant && !scene.magnetic())
+    r.fail(doc["force"]["constant"], "a constant force is implemented in 3-D only with a magnetic field (periodic and "
+                                     "none are implemented without one)");
   if (const YAML::Node integ = doc["integrator"]) {
     r.expect_keys(integ, {"tolerance"}, "'integrator'");
     scene.integrator_tolerance = r.positive(r.required(integ, "tolerance", "'integrator'"), "integrator.tolerance");

@@ -2,6 +2,7 @@
 #include "billiards/dynamics/table3.hpp"
 
 #include "billiards/dynamics/certified_scan.hpp"
+#include "billiards/dynamics/magnetic_flight.hpp"
 
 #include <algorithm>
 #include <numeric>
@@ -192,16 +193,28 @@ template <class Flight>
 FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight::State& s, double t_end) const {
   FlightHit<Flight> best;
   best.t = t_end;
-  if constexpr (is_straight<Flight>) {
+  if constexpr (is_straight<Flight> || requires { flight.scan_from(s).tube(); }) {
     const auto scan = flight.scan_from(s);
+    const Tube3 tube = [&] {
+      if constexpr (is_straight<Flight>) return Tube3{s.x, s.v, 0};
+      else return scan.tube();
+    }();
     for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
       if constexpr (std::is_same_v<W, TriangleWall>) {
-        search_triangles(s.x, s.v, 0, s.t, best, [&](const TriangleWall& w, double t) { return scan.exit_time(w, t); });
+        search_triangles(tube.origin, tube.dir, tube.pad, s.t, best,
+                         [&](const TriangleWall& w, double t) { return scan.exit_time(w, t); });
       } else {
         for (int i = 0, n = int(walls.size()); i < n; ++i) {
           const double t = scan.exit_time(walls[i], best.t);
           if (t < best.t) best.t = t, best.wall = {kind, i};
         }
+      }
+    });
+  } else if constexpr (!std::is_same_v<Flight, PeriodicDriveFlight3>) {
+    for_each_kind([&](const auto& walls, int kind) {
+      for (int i = 0, n = int(walls.size()); i < n; ++i) {
+        const double t = flight.exit_time(s, walls[i], best.t);
+        if (t < best.t) best.t = t, best.wall = {kind, i};
       }
     });
   } else {
@@ -233,6 +246,8 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
 template FlightHit<FreeFlight3> Table3::collision(const FreeFlight3&, const State3&, double) const;
 template FlightHit<PeriodicDriveFlight3> Table3::collision(const PeriodicDriveFlight3&, const DrivenState3&,
                                                            double) const;
+template FlightHit<MagneticFlight3> Table3::collision(const MagneticFlight3&, const State3&, double) const;
+template FlightHit<MagneticDriveFlight3> Table3::collision(const MagneticDriveFlight3&, const State3&, double) const;
 
 State3 sample_microcanonical(const Table3& table, double speed, ParticleRng& rng) {
   const Vec3 size = table.hi() - table.lo();

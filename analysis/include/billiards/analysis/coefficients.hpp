@@ -49,7 +49,8 @@ struct Coefficients {
   // shorter than λ makes the true condition stricter than this ratio.
   double length_ratio = 0;
   // In a magnetic field (0 without one): the cyclotron radius r_c = m v_E/|qB|, the table's
-  // inradius (every orbit meets the wall when r_c is at least that), and ω/|Ω| (must be ≫ 1).
+  // inradius in 2-D (every orbit meets the wall when r_c is at least that; 0 in 3-D, where every
+  // orbit with a velocity component along B drifts to the wall), and ω/|Ω| (must be ≫ 1).
   double cyclotron_radius = 0, inradius = 0, drive_over_cyclotron = 0;
   std::vector<std::string> warnings; // one per ratio above validity_threshold
 };

@@ -63,9 +63,9 @@ FollowResult follow(const TableT& table, const Flight& flight, typename Flight::
   while (result.collisions < limits.collisions) {
     const auto hit = collision(table, flight, s, horizon);
     if (!hit.found() && horizon == never) {
-      // A flight whose orbits close (`closes_orbits`, the magnetic one) and that meets no wall
-      // at all circles where it is, inside the table; any other leaves it.
-      if constexpr (requires { Flight::closes_orbits; }) result.trapped = true;
+      // A closed orbit (`closes_orbit`: a magnetic one without drift along the field) that
+      // meets no wall at all circles where it is, inside the table; any other leaves it.
+      if constexpr (requires { flight.closes_orbit(s); }) (flight.closes_orbit(s) ? result.trapped : result.escaped) = true;
       else result.escaped = true;
       break;
     }

@@ -1,115 +1,157 @@
-// Flights in a uniform magnetic field B perpendicular to the plane: circular arcs between
-// collisions (the cyclotron motion), in any scalar type (magnetic_flight.cpp instantiates
-// double, long double and precision.hpp's Reference).
+// Flights in a uniform magnetic field: circular arcs between collisions in 2-D (B perpendicular
+// to the plane), helices in 3-D, in any scalar type in 2-D (magnetic_flight.cpp instantiates
+// double, long double and precision.hpp's Reference) and in double in 3-D.
 //
-// A charge q of mass m feels q v × B ẑ, so v̇ = −Ω J v with J the rotation by +90° and
-// Ω = qB/m the signed cyclotron frequency (Ω > 0 turns clockwise).  With k = |Ω| and
-// w0 = −sign(Ω) J v0 (the velocity turned towards the centre of gyration),
-//   x(τ) = x0 + (sin kτ / k) v0 + ((1 − cos kτ) / k) w0,   v(τ) = cos kτ v0 + sin kτ w0,
-// a circle of centre x0 + w0/k and radius r_c = |v0|/k run through in the period 2π/k.
+// A charge q of mass m feels q v × B, so v̇ = v × Ω with Ω = qB/m (in 2-D Ω ẑ, Ω the signed
+// cyclotron frequency: Ω > 0 turns clockwise).  With k = |Ω|, b = Ω/k, the drift v∥ = (v0·b) b
+// along the field, v⊥ = v0 − v∥ and w0 = v⊥ × b (v⊥ turned towards the centre of gyration),
+//   x(τ) = x0 + v∥ τ + (sin kτ / k) v⊥ + ((1 − cos kτ) / k) w0,   v(τ) = v∥ + cos kτ v⊥ + sin kτ w0,
+// a circle of centre x0 + w0/k and radius r_c = |v⊥|/k run through in the period 2π/k while
+// the centre drifts along the field (in 2-D v∥ = 0: the circle closes).
 //
 // Exit times through segments and circular arcs are closed forms (docs/collisions.md): along
 // the orbit, a wall's gap (the signed distance beyond a line, ±(|x − c|² − r²) for a circle) is
 // F0 + B1 sin φ + B2 (1 − cos φ) in the angle turned φ = kτ, a quadratic form in
 // (cos φ/2, sin φ/2).  Its zero with F increasing, in the stable root formula of the quadratic,
 // is the outward crossing; there is one per turn, so the orbit leaves through the wall there or
-// never.  Elliptic arcs are searched by the certified scan (a circle maps to an ellipse under
-// the arc's affine map, so the mapped flight is not a magnetic flight).
+// never.  The same closed form serves a 3-D plane parallel to the field, and a plane across it
+// is met at a linear rate.  Elliptic arcs (a circle maps to an ellipse under the arc's affine
+// map, so the mapped flight is not a magnetic flight) and the other 3-D walls are searched by
+// the certified scan, whose `earliest` follows the guiding axis x0 + w0/k + v∥ τ: the helix stays
+// within r_c of it, so a wall farther than that is passed without sampling.
 #pragma once
 
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/flight.hpp"
+#include "billiards/dynamics/table3.hpp"
+
+#include <type_traits>
 
 namespace billiards::dynamics {
 
-template <class Real>
+template <class Real, int D = 2>
 struct BasicMagneticFlight;
+
+/// Ω = qB/m as a flight keeps it: in 2-D the signed cyclotron frequency (the field is Ω ẑ), in
+/// 3-D the vector.
+template <class Real, int D>
+using Cyclotron = std::conditional_t<D == 2, Real, VecN<Real, 3>>;
 
 /// The orbit of a magnetic flight from one state: what every wall's search starts from,
 /// computed once per flight (`collision` asks the flight for it with `scan_from(s)`).  It
 /// refers to the state, which must outlive it.
-template <class Real>
+template <class Real, int D = 2>
 struct Gyration {
-  using V = Vec2T<Real>;
-  const BasicState<Real>& s;
+  using V = VecN<Real, D>;
+  const BasicState<Real, D>& s;
   Real k;         // |Ω|
   Real inv_k;     // 1/|Ω|
-  V w0;           // v0 turned by a quarter turn towards the centre
-  Real speed;     // |v0|
-  V center;       // of gyration, x0 + w0/k
-  Real radius;    // r_c = |v0|/k
+  V axis;         // b = Ω/|Ω| (2-D: unused)
+  V v_perp;       // v⊥, the velocity across the field (2-D: v0)
+  V w0;           // v⊥ turned by a quarter turn towards the centre
+  V drift;        // v∥, the velocity along the field (2-D: 0)
+  Real speed;     // |v⊥|
+  V center;       // of gyration, x0 + w0/k (in 3-D at the start: it drifts by v∥ τ)
+  Real radius;    // r_c = |v⊥|/k
 
-  Gyration(const BasicMagneticFlight<Real>& flight, const BasicState<Real>& state);
-  Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const;
-  Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const;
-  Real exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const;
+  Gyration(const BasicMagneticFlight<Real, D>& flight, const BasicState<Real, D>& state);
+  /// Position and velocity τ after the start.
+  std::pair<V, V> at(const Real& tau) const;
+  Real period() const;
+
+  Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
+  Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  Real exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const requires(D == 2);
   /// The first wall of the table the orbit leaves through before t_end, with the state there
   /// from the crossing's half angle where a closed form found it (no sine or cosine).
-  FlightHit<BasicMagneticFlight<Real>> first_hit(const BasicTable<Real>& table, const Real& t_end) const;
-  /// Position after turning by φ = 2ψ, from (cos ψ, sin ψ) ∝ u (no sine or cosine).
-  V position_at_half_angle(const V& u) const;
+  FlightHit<BasicMagneticFlight<Real>> first_hit(const BasicTable<Real>& table, const Real& t_end) const
+    requires(D == 2);
+  /// Position after turning by φ = 2ψ, from (cos ψ, sin ψ) ∝ u (no sine or cosine; 2-D).
+  V position_at_half_angle(const Vec2T<Real>& u) const requires(D == 2);
   /// The last crossing a closed form returned (its time and half angle), for first_hit.
   mutable Real found_t = never;
-  mutable V found_u = V::Zero();
+  mutable Vec2T<Real> found_u = Vec2T<Real>::Zero();
   /// Can the orbit meet the wall's bounding disk before t_end?
   template <class Wall>
-  bool may_reach(const Wall& w, const Real& t_end) const;
+  bool may_reach(const Wall& w, const Real& t_end) const requires(D == 2);
+
+  double exit_time(const PlaneWall& w, double t_end) const requires(D == 3);
+  double exit_time(const TriangleWall& w, double t_end) const requires(D == 3);
+  double exit_time(const SphereWall& w, double t_end) const requires(D == 3);
+  /// The guiding axis and r_c (and rounding) around it: the tube the BVH walks (table3.hpp).
+  Tube3 tube() const requires(D == 3);
+
+ private:
+  /// Through the plane n·(x − a) = 0 within `in_span` (3-D): closed forms across and (without a
+  /// span) along the field, else the scan.
+  template <class InSpan>
+  double plane_exit(const Vec3& n, const Vec3& a, double slack, double t_end, bool spanless, InSpan in_span) const
+    requires(D == 3);
 };
 
-/// Flight in the uniform field: Ω = qB/m, the signed cyclotron frequency (≠ 0).
-template <class Real>
+/// Flight in the uniform field: Ω = qB/m, the signed cyclotron frequency (≠ 0) in 2-D, the
+/// vector (≠ 0) in 3-D.
+template <class Real, int D>
 struct BasicMagneticFlight {
   using Scalar = Real;
-  using State = BasicState<Real>;
+  using State = BasicState<Real, D>;
   static constexpr bool conserves_energy = true;
-  static constexpr bool closes_orbits = true;  // a cyclotron circle, which may meet no wall
 
-  Real omega_c;  // Ω = qB/m
+  Cyclotron<Real, D> omega_c;  // Ω = qB/m
 
   State start(const State& s) const { return s; }
   State advance(const State& s, const Real& t) const;
-  Gyration<Real> scan_from(const State& s) const { return {*this, s}; }
-  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
+  Gyration<Real, D> scan_from(const State& s) const { return {*this, s}; }
+  template <class Wall>
+  Real exit_time(const State& s, const Wall& w, const Real& t_end) const {
     return scan_from(s).exit_time(w, t_end);
   }
-  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const {
-    return scan_from(s).exit_time(w, t_end);
-  }
-  Real exit_time(const State& s, const BasicEllipticArcWall<Real>& w, const Real& t_end) const {
-    return scan_from(s).exit_time(w, t_end);
+  /// Does the orbit from s close (no drift along the field: always in 2-D)?  Such an orbit
+  /// may circle inside the table forever; any other drifts to a wall.
+  bool closes_orbit(const State& s) const {
+    if constexpr (D == 2) return true;
+    else return s.v.dot(omega_c) == 0;
   }
   Real period() const;
 };
 using MagneticFlight = BasicMagneticFlight<double>;
+using MagneticFlight3 = BasicMagneticFlight<double, 3>;
 
 /// The field B and a uniform force F cos(ωt + φ0) on the charge (ω = 0: the static force
-/// F cos φ0, whose E×B drift carries the centre of gyration across the field).  With 2-D
-/// vectors as complex numbers (J = i), v̇ = −iΩ v + a cos(ωt + φ0), a = F/m, and from s (phase θ):
+/// F cos φ0, whose E×B drift carries the centre of gyration across the field).  Across the
+/// field, with the plane's vectors as complex numbers (2-D: J = i; 3-D: a basis e1, e2 with
+/// e1 × e2 = b, where Ω = |Ω|), v̇ = −iΩ v + a cos(ωt + φ0), a = F/m, and from s (phase θ):
 ///   v(τ) = e^{−iΩτ} [v0 + (a/2)(e^{iθ} E(Ω + ω, τ) + e^{−iθ} E(Ω − ω, τ))],
 /// E(λ, τ) = ∫₀^τ e^{iλs} ds = e^{iλτ/2} 2 sin(λτ/2)/λ, which is τ at the resonance λ = 0: the
 /// same formula holds at ω = |Ω| without a division by zero (the energy then grows secularly).
-/// x(τ) integrates it once more (docs/collisions.md).  Exit times through every wall kind: the
-/// certified scan, with |v| bounded by |v0| + (|a|/2)(min(τ, 2/|Ω + ω|) + min(τ, 2/|Ω − ω|)).
+/// x(τ) integrates it once more (docs/collisions.md).  Along the field (3-D) the motion is the
+/// free driven one, v∥(τ) = v∥0 + a∥ Re(e^{iθ} E(ω, τ)).  Exit times through every wall kind:
+/// the certified scan, with |v| bounded by
+/// |v0| + (|a⊥|/2)(min(τ, 2/|Ω + ω|) + min(τ, 2/|Ω − ω|)) + |a∥| min(τ, 2/ω).
 /// The search needs a horizon (t_end finite): a bounded orbit may circle forever.
-template <class Real>
+template <class Real, int D = 2>
 struct BasicMagneticDriveFlight {
   using Scalar = Real;
-  using State = BasicState<Real>;
+  using State = BasicState<Real, D>;
   static constexpr bool conserves_energy = false;
 
-  Real omega_c;        // Ω = qB/m
-  Vec2T<Real> accel;   // F/m
-  Real omega = 0;      // ω (0: a static force)
-  Real phase0 = 0;     // φ0
+  Cyclotron<Real, D> omega_c;  // Ω = qB/m
+  VecN<Real, D> accel;         // F/m
+  Real omega = 0;              // ω (0: a static force)
+  Real phase0 = 0;             // φ0
 
   State start(const State& s) const { return s; }
   State advance(const State& s, const Real& t) const;
-  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
-  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
-  Real exit_time(const State& s, const BasicEllipticArcWall<Real>& w, const Real& t_end) const;
+  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
+  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  Real exit_time(const State& s, const BasicEllipticArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  double exit_time(const State& s, const PlaneWall& w, double t_end) const requires(D == 3);
+  double exit_time(const State& s, const TriangleWall& w, double t_end) const requires(D == 3);
+  double exit_time(const State& s, const SphereWall& w, double t_end) const requires(D == 3);
   /// A bound on the speed over the next τ of the flight from s.
   Real speed_bound(const State& s, const Real& tau) const;
 };
 using MagneticDriveFlight = BasicMagneticDriveFlight<double>;
+using MagneticDriveFlight3 = BasicMagneticDriveFlight<double, 3>;
 
 }  // namespace billiards::dynamics

@@ -60,9 +60,9 @@ struct Scene {
   std::string initial_csv;
   Force force;
   std::optional<Potential> potential;
-  /// A uniform magnetic field B perpendicular to the plane (2-D), acting on the charge `charge`;
-  /// none when absent or zero.
-  std::optional<double> magnetic_field;
+  /// A uniform magnetic field B, acting on the charge `charge` (in 2-D (0, 0, B), perpendicular
+  /// to the plane); none when absent or zero.
+  std::optional<Eigen::Vector3d> magnetic_field;
   double charge = 1;
   /// Relative tolerance of the integrator of flights in a general field (field_flight.hpp).
   double integrator_tolerance = 1e-10;
@@ -78,9 +78,11 @@ struct Scene {
     return dimension == 3 ? shape3.parameters : shape.parameters;
   }
   geometry::Measures measures() const;
-  /// Is there a magnetic field?  Then Ω = qB/m is its signed cyclotron frequency.
-  bool magnetic() const { return magnetic_field && *magnetic_field != 0; }
-  double cyclotron_frequency() const { return charge * *magnetic_field / mass; }
+  /// Is there a magnetic field?  Then Ω = qB/m is its cyclotron vector, and in 2-D its z
+  /// component the signed cyclotron frequency.
+  bool magnetic() const { return magnetic_field && *magnetic_field != Eigen::Vector3d::Zero(); }
+  Eigen::Vector3d cyclotron_vector() const { return charge * *magnetic_field / mass; }
+  double cyclotron_frequency() const { return cyclotron_vector().z(); }
 };
 
 /// Command-line overrides of a scene.

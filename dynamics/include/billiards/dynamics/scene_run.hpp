@@ -22,6 +22,13 @@ template <class Run>
 auto with_flight(const Scene& scene, Run&& run) {
   if (scene.dimension == 3) {  // (the scene file refuses forces that 3-D has no flight for)
     const Vec3 accel = scene.force.amplitude / scene.mass;
+    if (scene.magnetic()) {
+      const Vec3 omega_c = scene.cyclotron_vector();
+      if (scene.force.kind == Force::Kind::constant) return run(MagneticDriveFlight3{omega_c, accel});
+      if (scene.force.kind == Force::Kind::periodic)
+        return run(MagneticDriveFlight3{omega_c, accel, scene.force.omega, scene.force.phase});
+      return run(MagneticFlight3{omega_c});
+    }
     if (scene.force.kind == Force::Kind::periodic)
       return run(PeriodicDriveFlight3{accel, scene.force.omega, scene.force.phase});
     return run(FreeFlight3{});

@@ -26,6 +26,14 @@ namespace wall_kind3 {
 inline constexpr int plane = 0, triangle = 1, sphere = 2;
 }
 
+/// A line x = origin + τ dir that a flight's path stays within `pad` of (τ from the flight's
+/// start): the straight flight's own ray (pad 0), a helix's guiding axis (pad r_c).  The BVH
+/// walks it.
+struct Tube3 {
+  Vec3 origin, dir;
+  double pad;
+};
+
 /// Median-split BVH over triangles; boxes are padded by the walls' slack so that a ray
 /// within rounding of a triangle is never culled by its box.
 class Bvh {
@@ -57,11 +65,13 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   /// Keeps a reference to `region` (for point location), which must outlive the table.
   explicit BasicTable(const geometry3::Region3& region);
 
-  /// The first wall the flight (FreeFlight3 or PeriodicDriveFlight3) from `s` leaves the
-  /// region through, before `t_end`, with the flight's state there.  The walls other than
-  /// triangles are asked one by one (a driven flight's in the time order of their windows);
-  /// the triangles through the BVH, walked along the flight's guiding line with boxes grown by
-  /// its oscillation's amplitude |F|/(mω²).  For a particle inside the region and
+  /// The first wall the flight (FreeFlight3, PeriodicDriveFlight3, MagneticFlight3 or
+  /// MagneticDriveFlight3) from `s` leaves the region through, before `t_end`, with the
+  /// flight's state there.  The walls other than triangles are asked one by one (a driven
+  /// flight's in the time order of their windows); the triangles through the BVH, walked along
+  /// the flight's guiding line with boxes grown by its oscillation's amplitude |F|/(mω²) or its
+  /// cyclotron radius (`Tube3`), except under a magnetic field with a force, whose path no tube
+  /// holds: every triangle is asked.  For a particle inside the region and
   /// t_end = never, found() == false means an escape.
   template <class Flight>
   FlightHit<Flight> collision(const Flight& flight, const typename Flight::State& s, double t_end = never) const;
