@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <regex>
 #include <sstream>
 
 namespace billiards {
@@ -188,6 +189,16 @@ struct CoordinateFunction::Symbolic {
 
 CoordinateFunction::CoordinateFunction() : CoordinateFunction(std::make_shared<Symbolic>(Symbolic{0, "", 0})) {}
 
+namespace {
+/// GiNaC's parser reads past its argument list on a function called with none (`sqrt()`) and
+/// crashes, so such a call is refused before GiNaC sees the text.
+void refuse_empty_call(const std::string& text, const std::string& file, int line) {
+  static const std::regex empty_call(R"(([A-Za-z_][A-Za-z0-9_]*)\s*\(\s*\))");
+  if (std::smatch m; std::regex_search(text, m, empty_call))
+    throw InputError(file, line, "bad expression '" + text + "': " + m[1].str() + "() has no argument");
+}
+}  // namespace
+
 CoordinateFunction::CoordinateFunction(std::shared_ptr<const Symbolic> s) : symbolic_(std::move(s)) {
   std::ostringstream os;
   os << symbolic_->e;
@@ -206,6 +217,7 @@ CoordinateFunction::CoordinateFunction(const std::string& text, const Expression
       throw InputError(file, line, "parameter '" + name + "' hides the coordinate of the same name");
     table[name] = GiNaC::numeric(value);
   }
+  refuse_empty_call(text, file, line);
   GiNaC::parser reader(table, true);
   auto s = std::make_shared<Symbolic>();
   s->file = file;
