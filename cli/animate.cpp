@@ -6,6 +6,7 @@
 #include "commands.hpp"
 #include "options.hpp"
 #include "output.hpp"
+#include "phase_space.hpp"
 #include "progress.hpp"
 #include "python.hpp"
 #include "run.hpp"
@@ -17,7 +18,6 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 #include <omp.h>
-#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -49,17 +49,6 @@ struct AnimateArgs {
 constexpr std::size_t default_particles = 100;
 /// A shape's free particles: speed 1 (E = 1/2, m = 1), for this long by default.
 constexpr double shape_time = 10;
-
-/// Is the file a scene (it names a `shape:`) rather than a shape?  A file YAML cannot read is
-/// left to the scene reader, which reports its error.
-bool is_scene_file(const std::string& path) {
-  try {
-    const YAML::Node root = YAML::LoadFile(path);
-    return !root.IsMap() || root["shape"].IsDefined();
-  } catch (const YAML::Exception&) {
-    return true;
-  }
-}
 
 /// The scene to animate: the file's, or free particles in the shape from a microcanonical start.
 dynamics::Scene scene_of(const AnimateArgs& args) {
