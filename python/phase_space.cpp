@@ -30,7 +30,7 @@ using dynamics::Scene;
 
 /// A Shape or Shape3 as a free scene at speed 1 with `particles` microcanonical particles (as
 /// the CLI's load_phase_space_scene), or a Scene with its own (particles overriding its count
-/// when given).
+/// when given); a magnetic field with a force is refused (as refuse_forced_magnetic).
 Scene scene_of(const py::object& table, std::optional<std::size_t> particles, std::optional<std::uint64_t> seed) {
   Scene scene;
   const bool shape = py::isinstance<geometry::Shape>(table), shape3 = py::isinstance<geometry3::Shape3>(table);
@@ -48,6 +48,10 @@ Scene scene_of(const py::object& table, std::optional<std::size_t> particles, st
     return scene;
   }
   scene = table.cast<Scene>();
+  if (scene.magnetic() && scene.force.kind != dynamics::Force::Kind::none)
+    throw py::value_error("a magnetic field with a force needs a time horizon for its collision search; the "
+                          "phase-space functions follow particles collision by collision (bk.run follows them to "
+                          "its times)");
   if (particles) {
     const std::size_t given = scene.dimension == 3 ? scene.initial_states3.size() : scene.initial_states.size();
     if (given > 0 && *particles > given)
@@ -228,7 +232,7 @@ columns particle, collision, s, p, t, energy -- `billiard bmap`'s bmap.npy (docs
         "threads"_a = 0, "Is the undriven table chaotic and ergodic? `billiard chaos --json`'s main keys.");
   m.def("escape", &escape, "table"_a, py::kw_only(), "particles"_a = py::none(), "collisions"_a = 1000000,
         "seed"_a = py::none(), "entering"_a = false, "threads"_a = 0,
-        R"(Escape times through the exits of a Shape (free, speed 1) or a 2-D Scene (its ensemble: inside, or
+        R"(Escape times through the exits of a Shape or Shape3 (free, speed 1) or a Scene (its ensemble: inside, or
 through_exit): arrays escape_times (NaN if still inside), collisions, escaped; mean_escape_time, its se,
 exit_length, kac_mean_escape_time and the survival curve survival_t, survival_P -- `billiard escape`'s numbers.)");
 }

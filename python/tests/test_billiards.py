@@ -293,6 +293,8 @@ def test_phase_space_functions_give_the_programs_numbers(source, tmp_path):
     assert np.allclose(lyap["per_trajectory"].sum(axis=1), 0, atol=1e-9)
     # (50 000 collisions an orbit, as the CLI's default: its distance to uniform, ~0.03, stays clear of 0.1)
     assert bk.chaos(shape, orbits=3, collisions=50000)["ergodic"] is True
+    with pytest.raises(ValueError, match="needs a time horizon"):  # (a magnetic field with a force)
+        bk.boundary_map(bk.load_scene(source / "scenes" / "clover-magnetic-driven.yaml"))
 
 
 def test_escape_gives_the_programs_numbers_and_kacs_lemma(source, tmp_path):
