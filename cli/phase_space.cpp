@@ -64,8 +64,4 @@ void refuse_forced_magnetic(const dynamics::Scene& scene, const std::string& com
                                "field with a force needs (billiard run follows them to its times)");
 }
 
-void refuse_3d(const dynamics::Scene& scene, const std::string& command) {
-  if (scene.dimension != 2) throw InputError(scene.file, 0, command + " works on 2-D tables only");
-}
-
 }  // namespace billiards::cli
