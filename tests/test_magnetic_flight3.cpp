@@ -1,8 +1,9 @@
 // Magnetic flights in 3-D (helices about B): the helix against Rodrigues' rotation, exit times
 // through planes (across, along and oblique to B), spheres and triangles against a brute-force
-// MPFR scan of the orbit, grazing planes, energy over long runs, Santaló's collision rate in the
-// 3-D Sinai billiard with every flight verified, the drive at ω ≫ Ω against g1 Δt and g2 Δt,
-// trapped orbits, and the scene file and `billiard run`/`coeffs` on a 3-D magnetic scene.
+// MPFR scan of the orbit, without and with a static or periodic force, grazing planes, energy
+// over long runs, Santaló's collision rate in the 3-D Sinai billiard with every flight verified,
+// the drive at ω ≫ Ω against g1 Δt and g2 Δt, trapped orbits, and the scene file and
+// `billiard run`/`coeffs` on a 3-D magnetic scene.
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/follow.hpp"
 #include "billiards/dynamics/magnetic_flight.hpp"
