@@ -81,9 +81,9 @@ template <class Real>
   // from a wall just bounced off (F0 ≈ 0, B1 < 0) it is the far end of the chord, not the
   // start point.
   const Real root = sqrt(D);
-  V u = B1 <= 0 ? V(F0 + 2 * B2, root - B1) : V(-B1 - root, F0);
-  if (u.y() < 0 || (u.y() == 0 && u.x() < 0)) u = -u;  // ψ ∈ [0, π): one turn from now
-  return u;
+  const Real x = B1 <= 0 ? Real(F0 + 2 * B2) : Real(-B1 - root), y = B1 <= 0 ? Real(root - B1) : F0;
+  const bool turn = y < 0 || (y == 0 && x < 0);  // ψ ∈ [0, π): one turn from now
+  return turn ? V(-x, -y) : V(x, y);
 }
 
 /// The outward half angle (as outward_half_angle) through a line, or a plane parallel to the
