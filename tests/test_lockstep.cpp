@@ -191,3 +191,19 @@ TEST_CASE("lock step: ensembles equal simulate particle by particle, for 1 and 2
       }
   }
 }
+
+TEST_CASE("lock step: an exception thrown for one particle is rethrown after the run, not a termination") {
+  const auto table = table_of("clover");
+  dynamics::RunOptions opt;
+  opt.record_times = {0, 50};
+  const PeriodicDriveFlight flight{Vec2(3, 4), 10 * pi, 0};
+  const auto sampled = dynamics::microcanonical(table, flight, 1.0, 7);
+  const auto initial = [&](std::size_t i) {
+    if (i == 13) throw std::runtime_error("particle 13 cannot start");
+    return sampled(i);
+  };
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    CHECK_THROWS_WITH(dynamics::run_ensemble(table, flight, initial, opt, 40, threads), "particle 13 cannot start");
+  }
+}

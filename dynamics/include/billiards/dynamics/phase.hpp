@@ -3,6 +3,7 @@
 #pragma once
 
 #include "billiards/dynamics/phase_constants.hpp"
+#include "billiards/dynamics/state.hpp"
 
 #include <boost/math/constants/constants.hpp>
 
@@ -16,20 +17,8 @@ namespace billiards::dynamics {
 
 namespace detail {
 
-// Error-free transformations of doubles (Knuth, Dekker): the exact sum and product of two
-// doubles as a rounded result and its exact error.
-
-/// a + b = s + e exactly (Knuth's TwoSum).
-inline std::pair<double, double> two_sum(double a, double b) {
-  const double s = a + b, bb = s - a;
-  return {s, (a - (s - bb)) + (b - bb)};
-}
-/// a + b = s + e exactly when |a| ≥ |b| or a = 0 (Dekker's FastTwoSum).
-inline std::pair<double, double> fast_two_sum(double a, double b) {
-  const double s = a + b;
-  return {s, b - (s - a)};
-}
-/// a·b = p + e exactly for |a|, |b| < 2⁹⁹⁵ (Dekker's product on Veltkamp's halves).  Not a fused
+/// a·b = p + e exactly (with two_sum and fast_two_sum of state.hpp, the error-free
+/// transformations of doubles: Knuth, Dekker) for |a|, |b| < 2⁹⁹⁵ (Dekker's product on Veltkamp's halves).  Not a fused
 /// multiply-add: x86-64 without -mfma calls one from libm, and these are the same bits on any
 /// processor (the build forbids contraction: CMakeLists.txt).
 inline std::pair<double, double> two_prod(double a, double b) {
