@@ -15,25 +15,6 @@
 
 namespace billiards::dynamics {
 
-namespace detail {
-
-/// a·b = p + e exactly (with two_sum and fast_two_sum of state.hpp, the error-free
-/// transformations of doubles: Knuth, Dekker) for |a|, |b| < 2⁹⁹⁵ (Dekker's product on Veltkamp's halves).  Not a fused
-/// multiply-add: x86-64 without -mfma calls one from libm, and these are the same bits on any
-/// processor (the build forbids contraction: CMakeLists.txt).
-inline std::pair<double, double> two_prod(double a, double b) {
-  auto split = [](double x) {
-    const double c = phase_constants::split * x, high = c - (c - x);
-    return std::pair{high, x - high};
-  };
-  const auto [ah, al] = split(a);
-  const auto [bh, bl] = split(b);
-  const double p = a * b;
-  return {p, ((ah * bh - p) + ah * bl + al * bh) + al * bl};
-}
-
-}  // namespace detail
-
 /// The drive's phase θ = ω t + phase of a flight in double: the unevaluated sum hi + lo of two
 /// doubles (106 bits), kept reduced to [0, 2π) between flights.  A plain double ω t at
 /// ω = 2560π, t = 1e4 would keep only 8 digits.  Its arithmetic is a dozen double operations:

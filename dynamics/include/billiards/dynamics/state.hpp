@@ -3,6 +3,7 @@
 // (2 by default; 3 for 3-D tables).
 #pragma once
 
+#include "billiards/dynamics/error_free.hpp"
 #include "billiards/geometry/pieces.hpp"
 
 #include <limits>
@@ -19,21 +20,6 @@ using VecN = Eigen::Matrix<Real, D, 1>;
 
 /// "No collision": the exit time of a flight that never leaves through a wall.
 inline constexpr double never = std::numeric_limits<double>::infinity();
-
-namespace detail {
-
-/// a + b = s + e exactly (Knuth's TwoSum).
-inline std::pair<double, double> two_sum(double a, double b) {
-  const double s = a + b, bb = s - a;
-  return {s, (a - (s - bb)) + (b - bb)};
-}
-/// a + b = s + e exactly when |a| ≥ |b| or a = 0 (Dekker's FastTwoSum).
-inline std::pair<double, double> fast_two_sum(double a, double b) {
-  const double s = a + b;
-  return {s, b - (s - a)};
-}
-
-}  // namespace detail
 
 /// The absolute time of a run, to which each flight's own time is added when it ends.  A flight
 /// is computed on its own clock (its state's t starts at 0), so its hit time, position and
