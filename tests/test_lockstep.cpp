@@ -57,7 +57,8 @@ bool same_hit(const dynamics::FlightHit<PeriodicDriveFlight>& a, const dynamics:
 }
 
 // States the ensembles meet: fresh microcanonical starts, and states just after bounces (on a
-// wall, some after chattering re-collisions at low ω) along trajectories of several particles.
+// wall, some after chattering re-collisions at low ω) along trajectories of several particles,
+// each flight on its own clock as in the ensembles.
 std::vector<DrivenState> states_along_trajectories(const dynamics::Table& table, const PeriodicDriveFlight& flight,
                                                    int particles, int bounces) {
   std::vector<DrivenState> states;
@@ -65,10 +66,12 @@ std::vector<DrivenState> states_along_trajectories(const dynamics::Table& table,
     dynamics::ParticleRng rng(97, std::uint64_t(p));
     DrivenState s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
     states.push_back(s);
+    dynamics::Clock clock;
     for (int k = 0; k < bounces; ++k) {
       const auto hit = dynamics::collision(table, flight, s);
       REQUIRE(hit.found());
       dynamics::bounce(flight, s, hit);
+      dynamics::restart_clock(flight, s, clock);
       states.push_back(s);
     }
   }

@@ -139,17 +139,22 @@ Real unit_excess(const VecN<Real, D>& n) {
 
 }  // namespace detail
 
+/// v − k n/(n·n), the same division by n·n: the reflection with k = 2(v·n), or off a moving wall
+/// with k = 2((v − u)·n) (u the wall's velocity).
+template <class Real, int D>
+inline VecN<Real, D> reflect(const VecN<Real, D>& v, const VecN<Real, D>& n, const Real& k) {
+  return (v - k * n) + (k * detail::unit_excess(n)) * n;
+}
 /// Specular reflection off the normal n, v' = v − 2(v·n)n/(n·n).  A computed normal is a unit
 /// vector to rounding only, n·n = 1 + η, and the plain v − 2(v·n)n scales the normal component
 /// by 1 + 2η: after the speed is restored, the orbit turns toward the normal by η.  Contact
-/// normals u/|u| with |u| ≈ 1 have η biased (+0.54 ε on average at the circle), so that turn
-/// was a drift (the circle's angular momentum −1.2 ε per bounce at 1.4 rad from the tangent).
+/// normals u/|u| with |u| ≈ 1 have η biased (+0.55 ε on average at the circle), so that turn
+/// was a drift (the circle's angular momentum −1.06 ε per bounce at 1.4 rad from the tangent).
 /// Here 1/(n·n) = 1 − η to O(ε²), with η from unit_excess (η exact from Dekker's products cost
 /// 10% of a free clover collision; this costs nothing measurable, BENCHMARKS.md).
 template <class Real, int D>
 inline VecN<Real, D> reflect(const VecN<Real, D>& v, const VecN<Real, D>& n) {
-  const Real k = 2 * v.dot(n);
-  return (v - k * n) + (k * detail::unit_excess(n)) * n;
+  return reflect(v, n, Real(2 * v.dot(n)));
 }
 
 /// Rescales v to the speed² `v2`.  Flights that conserve energy restore it after every bounce
