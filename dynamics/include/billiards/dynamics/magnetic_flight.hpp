@@ -139,6 +139,9 @@ struct BasicMagneticDriveFlight {
   using Scalar = Real;
   using State = BasicState<Real, D>;
   static constexpr bool conserves_energy = false;
+  /// The drive's phase is ω t + phase0 from the state's t (collision.hpp's restart_clock leaves
+  /// the absolute time there).
+  static constexpr bool reads_absolute_time = true;
 
   Cyclotron<Real, D> omega_c;  // Ω = qB/m
   VecN<Real, D> accel;         // F/m
