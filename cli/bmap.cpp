@@ -114,7 +114,7 @@ Section compute(const dynamics::Scene& scene, const Flight& flight, const BmapAr
       throw InputError("--strobe", 0,
                        fmt::format("a stroboscopic section needs a periodic drive (scene force: {})", scene.force.name()));
     }
-    const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+    const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
     return {"bmap", analysis::boundary_map(table, coordinates, flight, initial, n, k, args.threads, scene.mass, tick)};
   }
 }
@@ -144,7 +144,7 @@ void run_bmap(const BmapArgs& args) {
   if (!args.section.empty() && args.strobe) throw InputError("--section", 0, "give --section or --strobe, not both");
   auto scene = load_phase_space_scene(args);
   if (!args.section.empty()) {  // (before any work)
-    if (scene.dimension == 3) parse_section<3>(args.section);
+    if (scene.dimension() == 3) parse_section<3>(args.section);
     else parse_section<2>(args.section);
   }
   const std::string out_dir = !args.out.empty() ? args.out : scene.output_dir + "-bmap";
@@ -168,7 +168,7 @@ void run_bmap(const BmapArgs& args) {
       {"rows", s.rows.row_count()}, {"escapes", s.rows.escapes()}, {"section", args.section}, {"strobe", args.strobe ? nlohmann::json(*args.strobe) : nlohmann::json()},
       {"npy", s.kind + ".npy"}};
   if (s.kind == "bmap") {
-    const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+    const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
     meta["perimeter"] = coordinates.perimeter();
     meta["piece_starts"] = coordinates.piece_starts();
     meta["loop_firsts"] = coordinates.loop_firsts();

@@ -30,16 +30,16 @@ using dynamics::Scene;
 Scene scene_of(const py::object& table, std::optional<std::size_t> particles, std::optional<std::uint64_t> seed) {
   Scene scene;
   if (py::isinstance<geometry::Shape>(table)) {
-    scene.shape = table.cast<geometry::Shape>();
+    scene.table = dynamics::SceneTable<2>{table.cast<geometry::Shape>(), {}};
     scene.energy = 0.5;
     scene.particles = particles.value_or(10);
     scene.seed = seed.value_or(1);
     return scene;
   }
   scene = table.cast<Scene>();
-  if (scene.dimension != 2) throw py::value_error("the phase-space functions work on 2-D tables only");
+  if (scene.dimension() != 2) throw py::value_error("the phase-space functions work on 2-D tables only");
   if (particles) {
-    if (!scene.initial_states.empty() && *particles > scene.initial_states.size())
+    if (!scene.initial_states<2>().empty() && *particles > scene.initial_states<2>().size())
       throw py::value_error("more particles than the scene's initial-condition file holds");
     scene.particles = *particles;
   }
@@ -54,7 +54,7 @@ py::array_t<double> rows_array(const analysis::SectionRows& r) {
 py::array_t<double> boundary_map(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
                                  std::optional<std::uint64_t> seed, int threads) {
   const Scene scene = scene_of(table, particles, seed);
-  const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+  const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
   analysis::SectionRows rows;
   {
     py::gil_scoped_release unlocked;
@@ -140,8 +140,8 @@ py::dict escape(const py::object& table, std::optional<std::size_t> particles, s
                 std::optional<std::uint64_t> seed, bool entering, int threads) {
   Scene scene = scene_of(table, particles, seed);
   if (entering) scene.through_exit = geometry::SourceRef{"entering=True", 0};
-  const analysis::BoundaryCoordinates coordinates(scene.shape.region);
-  const analysis::Exits exits(coordinates, analysis::read_exits(scene.shape, coordinates));
+  const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
+  const analysis::Exits exits(coordinates, analysis::read_exits(scene.shape<2>(), coordinates));
   if (exits.empty()) throw py::value_error("the shape lists no exits: nothing can escape");
   std::vector<analysis::EscapeRecord> records;
   {

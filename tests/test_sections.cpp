@@ -102,7 +102,7 @@ analysis::SectionRows section_against_scan(const Table& table, const Flight& fli
 
 TEST_CASE("driven flights' crossings lie on the section, as many as a fine scan of each flight finds") {
   const auto scene = bundled_scene("clover-driven.yaml", 3);
-  const dynamics::Table table(scene.shape.region);
+  const dynamics::Table table(scene.shape<2>().region);
   const dynamics::PeriodicDriveFlight drive{geometry::Vec2(6, 2), 5.0, 0.3};  // slow: curved flights
   const auto initial = [&](std::size_t i) {
     return drive.start(dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 5)(i));
