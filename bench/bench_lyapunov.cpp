@@ -66,8 +66,8 @@ int main(int argc, char** argv) {
     compare(std::string(name) + " (free)", table, &coordinates, dynamics::FreeFlight{}, s, collisions);
   }
   const auto scene = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-driven.yaml");
-  const dynamics::Table table(scene.shape.region);
-  const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+  const dynamics::Table table(scene.shape<2>().region);
+  const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
   const dynamics::PeriodicDriveFlight drive{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   compare("clover (driven)", table, &coordinates, drive, dynamics::initial_states(scene, table, drive)(0),
           collisions / 10);
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
     compare<dynamics::FreeFlight3, void>(std::string(name) + " 3-D (free)", table3, nullptr, {}, s, collisions);
   }
   const auto scene3 = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/sinai3-driven.yaml");
-  const dynamics::Table3 table3(scene3.shape3.region);
+  const dynamics::Table3 table3(scene3.shape<3>().region);
   const dynamics::PeriodicDriveFlight3 drive3{scene3.force.amplitude / scene3.mass, scene3.force.omega,
                                              scene3.force.phase};
   compare<dynamics::PeriodicDriveFlight3, void>("sinai3 3-D (driven)", table3, nullptr, drive3,

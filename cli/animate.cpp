@@ -94,7 +94,7 @@ void write_movie_input(const OutputDir& dir, const dynamics::Scene& scene, const
   const std::size_t K = f.times.size(), N = f.particles;
   nlohmann::json meta = {{"fps", args.fps}, {"trail", args.trail}, {"outline", nlohmann::json::array()},
                          {"title", fmt::format("{}: N = {}", fs::path(args.file).stem().string(), N)}};
-  for (const auto* loop : scene.shape.region.loops()) {
+  for (const auto* loop : scene.shape<2>().region.loops()) {
     nlohmann::json pts = nlohmann::json::array();
     for (const auto& q : geometry::outline_of(*loop, geometry::pi / 360)) pts.push_back({q.x(), q.y()});
     meta["outline"].push_back(pts);
@@ -116,7 +116,7 @@ void write_movie_input(const OutputDir& dir, const dynamics::Scene& scene, const
 void animate(const AnimateArgs& args) {
   require_movie_format(args.output);
   const auto scene = scene_of(args);
-  if (scene.dimension != 2) throw InputError(args.file, 0, "animate draws 2-D scenes; this one is 3-D");
+  if (scene.dimension() != 2) throw InputError(args.file, 0, "animate draws 2-D scenes; this one is 3-D");
   if (!(scene.time > 0)) throw InputError(args.file, 0, "the animation needs a positive time (--time)");
   if (args.histogram && !analysis::prediction_of(scene))
     throw InputError(args.file, 0, "--histogram needs a driven scene the theory covers (a Fokker–Planck density)");

@@ -57,7 +57,7 @@ void speed_error(const SpeedErrorArgs& args) {
     throw InputError(as_given.file, 0, "bench speed-error needs a periodic drive");
   if (!as_given.initial_csv.empty())
     throw InputError(as_given.file, 0, "bench speed-error needs a microcanonical start");
-  if (as_given.dimension != 2) throw InputError(as_given.file, 0, "bench speed-error runs 2-D scenes only");
+  if (as_given.dimension() != 2) throw InputError(as_given.file, 0, "bench speed-error runs 2-D scenes only");
   for (const auto& omega : args.omegas) {
     dynamics::SceneOverrides overrides;
     overrides.set["omega"] = omega;  // the scene's parameter, so that the drive may use it
@@ -66,7 +66,7 @@ void speed_error(const SpeedErrorArgs& args) {
     opt.mass = scene.mass;
     opt.energy = scene.energy;
     opt.seed = scene.seed;
-    const dynamics::Table table(scene.shape.region);
+    const dynamics::Table table(scene.shape<2>().region);
     const dynamics::PeriodicDriveFlight flight{dynamics::Vec2(scene.force.amplitude / scene.mass), scene.force.omega,
                                                scene.force.phase};
     fmt::print("omega = {} = {:.6g}: {} particles to t = {}, {} checked in MPFR\n", omega, flight.omega,

@@ -115,7 +115,7 @@ Section compute(const dynamics::Scene& scene, const Flight& flight, const BmapAr
                      "the boundary map's coordinates (s, p) are 2-D only: for a 3-D table give a plane section, such "
                      "as --section \"z = 0\", or --strobe PHASE for a driven scene");
   } else {
-    const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+    const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
     return {"bmap", analysis::boundary_map(table, coordinates, flight, initial, n, k, args.threads, scene.mass, tick)};
   }
 }
@@ -148,7 +148,7 @@ void run_bmap(const BmapArgs& args) {
   auto scene = load_phase_space_scene(args);
   refuse_forced_magnetic(scene, "billiard bmap");
   if (!args.section.empty()) {  // (before any work)
-    if (scene.dimension == 3) parse_section<3>(args.section);
+    if (scene.dimension() == 3) parse_section<3>(args.section);
     else parse_section<2>(args.section);
   }
   const std::string out_dir = !args.out.empty() ? args.out : scene.output_dir + "-bmap";
@@ -172,7 +172,7 @@ void run_bmap(const BmapArgs& args) {
       {"rows", s.rows.row_count()}, {"escapes", s.rows.escapes()}, {"section", args.section}, {"strobe", args.strobe ? nlohmann::json(*args.strobe) : nlohmann::json()},
       {"npy", s.kind + ".npy"}};
   if (s.kind == "bmap") {
-    const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+    const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
     meta["perimeter"] = coordinates.perimeter();
     meta["piece_starts"] = coordinates.piece_starts();
     meta["loop_firsts"] = coordinates.loop_firsts();

@@ -91,8 +91,8 @@ void add_chaos(CLI::App& app) {
     o.threads = args->threads;
     Progress progress("chaos", o.orbits, !args->quiet);
     const auto tick = [&](std::size_t d) { progress.update(d); };
-    const auto v = scene.dimension == 3 ? analysis::chaos_of(scene.shape3.region, o, tick)
-                                        : analysis::chaos_of(scene.shape.region, o, tick);
+    const auto v = scene.dimension() == 3 ? analysis::chaos_of(scene.shape<3>().region, o, tick)
+                                        : analysis::chaos_of(scene.shape<2>().region, o, tick);
     progress.finish();
     if (args->json) {
       std::cout << verdict_json(v, o).dump(2) << "\n";
@@ -102,7 +102,7 @@ void add_chaos(CLI::App& app) {
     fmt::print("maximal Lyapunov exponent: {:.6g} ± {:.2g} per unit time, {:.6g} ± {:.2g} per collision\n",
                v.lyapunov.mean, v.lyapunov.se, v.lyapunov_per_collision.mean, v.lyapunov_per_collision.se);
     fmt::print("boundary map against {} on {} x {} cells: pooled distance {:.3g}, coverage {:.3g}\n",
-               scene.dimension == 3 ? "dA cos(theta) dOmega (walls x cos^2 theta)" : "ds dp", v.position_cells,
+               scene.dimension() == 3 ? "dA cos(theta) dOmega (walls x cos^2 theta)" : "ds dp", v.position_cells,
                o.cells_p, v.pooled_distance, v.pooled_coverage);
     for (std::size_t i = 0; i < v.orbits.size(); ++i) {
       const auto& e = v.orbits[i];

@@ -54,7 +54,7 @@ void add_coeffs(CLI::App& app) {
       throw InputError(args->scene, 0,
                        "coeffs needs a periodic force (uniform or field) and a microcanonical initial energy");
     // The theory assumes a chaotic, ergodic undriven table: its verdict beside the prediction.
-    const auto chaos = scene.dimension == 2 ? ergodicity_check(scene.shape.region) : nlohmann::json();
+    const auto chaos = scene.dimension() == 2 ? ergodicity_check(scene.shape<2>().region) : nlohmann::json();
     if (args->json) {
       auto j = nlohmann::json(*c);
       j["chaos_check"] = chaos;

@@ -168,7 +168,7 @@ void compare(const CompareArgs& args) {
   const auto fp = prediction_at_record_times(scene, *prediction, args.cells);
   if (ranks().root()) OutputDir::require_creatable(scene.output_dir);
   // The theory assumes a chaotic, ergodic undriven table: its verdict beside the prediction.
-  const auto chaos = scene.dimension == 2 ? ergodicity_check(scene.shape.region) : nlohmann::json();
+  const auto chaos = scene.dimension() == 2 ? ergodicity_check(scene.shape<2>().region) : nlohmann::json();
   if (!chaos.is_null() && ranks().root()) print_ergodicity(chaos);
   const auto run = run_ensemble(scene, args);
   if (!run || !ranks().root()) return;

@@ -46,16 +46,16 @@ std::vector<analysis::EscapeRecord> escapes_of(const dynamics::Scene& scene, con
     return records;
   };
   if constexpr (dynamics::is_3d<Flight>) {
-    const analysis::Exits3 exits(analysis::read_exits3(scene.shape3));
-    require_exits(exits.empty(), scene.shape3.region.origin.file, "{disc: {center: [x, y, z], radius: r}}");
+    const analysis::Exits3 exits(analysis::read_exits3(scene.shape<3>()));
+    require_exits(exits.empty(), scene.shape<3>().region.origin.file, "{disc: {center: [x, y, z], radius: r}}");
     exit_measure = exits.area();
     const auto enter = [&](double speed, auto& rng) { return exits.entering_state(speed, rng); };
     return run(analysis::open_table_initial_states(scene, table, flight, enter),
                [&](const auto& hit) { return exits.contains(hit.wall, hit.point); });
   } else {
-    const analysis::BoundaryCoordinates coordinates(scene.shape.region);
-    const analysis::Exits exits(coordinates, analysis::read_exits(scene.shape, coordinates));
-    require_exits(exits.empty(), scene.shape.region.origin.file, "{from: [x1, y1], to: [x2, y2]}");
+    const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
+    const analysis::Exits exits(coordinates, analysis::read_exits(scene.shape<2>(), coordinates));
+    require_exits(exits.empty(), scene.shape<2>().region.origin.file, "{from: [x1, y1], to: [x2, y2]}");
     exit_measure = exits.length();
     return run(analysis::open_table_initial_states(scene, table, flight, coordinates, exits),
                [&](const auto& hit) { return exits.contains(coordinates.s_of(table, hit)); });
@@ -83,8 +83,8 @@ void run_escape(const EscapeArgs& args) {
   nlohmann::json j = {{"mean_escape_time", summary.mean},
                       {"mean_escape_time_se", summary.se},
                       {"exit_length", exit_measure},
-                      {"kac_mean_escape_time", analysis::kac_mean_escape_time(V, exit_measure, speed, scene.dimension)},
-                      {"dimension", scene.dimension},
+                      {"kac_mean_escape_time", analysis::kac_mean_escape_time(V, exit_measure, speed, scene.dimension())},
+                      {"dimension", scene.dimension()},
                       {"ensemble", scene.through_exit ? "through_exit" : scene.initial_csv.empty() ? "microcanonical" : "csv"},
                       {"particles", scene.particles},
                       {"escaped", summary.times.size()},
@@ -107,8 +107,8 @@ void run_escape(const EscapeArgs& args) {
   } else {
     fmt::print("{}: {} of {} particles escaped through exits of total {} {:.6g}; mean escape time {:.6g} ± {:.2g} "
                "(Kac, entering ensemble: {} = {:.6g}); results in {}/\n",
-               scene.shape_name(), summary.times.size(), scene.particles, scene.dimension == 3 ? "area" : "length",
-               exit_measure, summary.mean, summary.se, scene.dimension == 3 ? "4 V/(A v)" : "pi V/(w v)",
+               scene.shape_name(), summary.times.size(), scene.particles, scene.dimension() == 3 ? "area" : "length",
+               exit_measure, summary.mean, summary.se, scene.dimension() == 3 ? "4 V/(A v)" : "pi V/(w v)",
                j["kac_mean_escape_time"].get<double>(), out_dir);
   }
   if (summary.still_inside(scene.particles) > 0)

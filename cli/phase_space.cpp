@@ -43,12 +43,11 @@ dynamics::Scene load_phase_space_scene(const PhaseSpaceArgs& args) {
   if (is_scene_file(args.source)) return dynamics::load_scene(args.source, overrides);
   dynamics::Scene scene;
   scene.file = args.source;
-  scene.dimension = geometry3::shape_dimension(args.source);
-  if (scene.dimension == 3) {
-    scene.shape3 = geometry3::load_shape3(args.source, overrides.set);
+  if (geometry3::shape_dimension(args.source) == 3) {
+    scene.table = dynamics::SceneTable<3>{geometry3::load_shape3(args.source, overrides.set), {}};
     scene.force.amplitude = Eigen::VectorXd::Zero(3);
   } else {
-    scene.shape = geometry::load_shape(args.source, overrides.set);
+    scene.table = dynamics::SceneTable<2>{geometry::load_shape(args.source, overrides.set), {}};
   }
   scene.energy = 0.5;
   scene.particles = args.particles;

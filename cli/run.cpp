@@ -188,7 +188,7 @@ nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coeff
   nlohmann::json j = per_time.back();  // the end time's moments, and its fp_* keys
   for (const char* key : {"t", "g1_t", "g2_t"}) j.erase(key);
   j.update({{"scene", scene.file}, {"scene_text", scene.text}, {"command", command_line()},
-            {"dimension", scene.dimension}, {"shape", scene.shape_name()},
+            {"dimension", scene.dimension()}, {"shape", scene.shape_name()},
             {"shape_parameters", scene.shape_parameters()}, {"force", scene.force.name()},
             {"F", std::vector<double>(scene.force.amplitude.begin(), scene.force.amplitude.end())},
             {"omega", scene.force.omega}, {"mass", scene.mass}, {"E0", scene.energy},

@@ -135,7 +135,7 @@ void run_trajectory(const TrajectoryArgs& args) {
       .collisions = args.collisions.value_or(args.time ? std::numeric_limits<std::size_t>::max() : 100),
       .t_end = args.time.value_or(dynamics::never)};
   const std::string out_dir = !args.out.empty() ? args.out : scene.output_dir + "-trajectory";
-  const auto names = columns(scene.dimension);
+  const auto names = columns(scene.dimension());
   OutputDir out(out_dir);
   ChunkWriter rows(out, names.size(), args.chunk);
   TrajectoryProgress progress{Progress("trajectory", args.time ? 1000 : limits.collisions, !args.quiet),
@@ -146,7 +146,7 @@ void run_trajectory(const TrajectoryArgs& args) {
   progress.bar.finish();
   const nlohmann::json index = {
       {"table", scene.file}, {"shape", scene.shape_name()}, {"force", scene.force.name()},
-      {"dimension", scene.dimension}, {"mass", scene.mass}, {"seed", scene.seed}, {"particle", args.particle},
+      {"dimension", scene.dimension()}, {"mass", scene.mass}, {"seed", scene.seed}, {"particle", args.particle},
       {"dt", args.dt.value_or(0)}, {"time", args.time ? nlohmann::json(*args.time) : nlohmann::json()},
       {"collisions", made.collisions}, {"escaped", made.escaped}, {"trapped", made.trapped},
       {"columns", names},

@@ -552,11 +552,11 @@ with its own vertices); empty arrays for a sphere.)")
            "base_dir"_a = py::none(), "name"_a = "scene dict", "Same as load_scene(source, ...).")
       .def_property_readonly("file", [](const Scene& s) { return s.file; })
       .def_property_readonly("text", [](const Scene& s) { return s.text; }, "The scene's YAML text.")
-      .def_property_readonly("dimension", [](const Scene& s) { return s.dimension; })
+      .def_property_readonly("dimension", [](const Scene& s) { return s.dimension(); })
       .def_property_readonly("shape", [](const std::shared_ptr<Scene>& s) {
         // Views into the scene (it stays alive with them): a large mesh is not copied.
-        if (s->dimension == 3) return py::cast(std::shared_ptr<Shape3>(s, &s->shape3));
-        return py::cast(std::shared_ptr<Shape>(s, &s->shape));
+        if (s->dimension() == 3) return py::cast(std::shared_ptr<Shape3>(s, &s->shape<3>()));
+        return py::cast(std::shared_ptr<Shape>(s, &s->shape<2>()));
       }, "The scene's Shape (2-D) or Shape3 (3-D).")
       .def_property_readonly("mass", [](const Scene& s) { return s.mass; })
       .def_property_readonly("energy", [](const Scene& s) { return s.energy; },

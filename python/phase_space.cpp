@@ -36,11 +36,10 @@ Scene scene_of(const py::object& table, std::optional<std::size_t> particles, st
   const bool shape = py::isinstance<geometry::Shape>(table), shape3 = py::isinstance<geometry3::Shape3>(table);
   if (shape || shape3) {
     if (shape3) {
-      scene.dimension = 3;
-      scene.shape3 = table.cast<geometry3::Shape3>();
+      scene.table = dynamics::SceneTable<3>{table.cast<geometry3::Shape3>(), {}};
       scene.force.amplitude = Eigen::VectorXd::Zero(3);
     } else {
-      scene.shape = table.cast<geometry::Shape>();
+      scene.table = dynamics::SceneTable<2>{table.cast<geometry::Shape>(), {}};
     }
     scene.energy = 0.5;
     scene.particles = particles.value_or(10);
@@ -53,7 +52,7 @@ Scene scene_of(const py::object& table, std::optional<std::size_t> particles, st
                           "phase-space functions follow particles collision by collision (bk.run follows them to "
                           "its times)");
   if (particles) {
-    const std::size_t given = scene.dimension == 3 ? scene.initial_states3.size() : scene.initial_states.size();
+    const std::size_t given = scene.dimension() == 3 ? scene.initial_states<3>().size() : scene.initial_states<2>().size();
     if (given > 0 && *particles > given)
       throw py::value_error("more particles than the scene's initial-condition file holds");
     scene.particles = *particles;
@@ -69,10 +68,10 @@ py::array_t<double> rows_array(const analysis::SectionRows& r) {
 py::array_t<double> boundary_map(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
                                  std::optional<std::uint64_t> seed, int threads) {
   const Scene scene = scene_of(table, particles, seed);
-  if (scene.dimension == 3)
+  if (scene.dimension() == 3)
     throw py::value_error("a 3-D table has no boundary map (Birkhoff coordinates need a curve): its plane sections "
                           "are `billiard bmap --section`'s");
-  const analysis::BoundaryCoordinates coordinates(scene.shape.region);
+  const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
   analysis::SectionRows rows;
   {
     py::gil_scoped_release unlocked;
@@ -174,11 +173,11 @@ py::dict escape(const py::object& table, std::optional<std::size_t> particles, s
   std::optional<analysis::BoundaryCoordinates> coordinates;
   std::optional<analysis::Exits> exits;
   std::optional<analysis::Exits3> exits3;
-  if (scene.dimension == 3) {
-    exits3.emplace(analysis::read_exits3(scene.shape3));
+  if (scene.dimension() == 3) {
+    exits3.emplace(analysis::read_exits3(scene.shape<3>()));
   } else {
-    coordinates.emplace(scene.shape.region);
-    exits.emplace(*coordinates, analysis::read_exits(scene.shape, *coordinates));
+    coordinates.emplace(scene.shape<2>().region);
+    exits.emplace(*coordinates, analysis::read_exits(scene.shape<2>(), *coordinates));
   }
   if (exits3 ? exits3->empty() : exits->empty()) throw py::value_error("the shape lists no exits: nothing can escape");
   const double exit_measure = exits3 ? exits3->area() : exits->length();
@@ -212,10 +211,10 @@ py::dict escape(const py::object& table, std::optional<std::size_t> particles, s
                   "escaped"_a = py::array(py::cast(escaped)).attr("astype")("bool"),
                   "mean_escape_time"_a = summary.mean, "mean_escape_time_se"_a = summary.se,
                   "exit_length"_a = exit_measure,
-                  "kac_mean_escape_time"_a = analysis::kac_mean_escape_time(V, exit_measure, speed, scene.dimension),
+                  "kac_mean_escape_time"_a = analysis::kac_mean_escape_time(V, exit_measure, speed, scene.dimension()),
                   "survival_t"_a = array_of(P.t), "survival_P"_a = array_of(P.P),
                   "still_inside"_a = summary.still_inside(scene.particles), "speed"_a = speed,
-                  "ensemble"_a = scene.through_exit ? "through_exit" : "microcanonical", "dimension"_a = scene.dimension);
+                  "ensemble"_a = scene.through_exit ? "through_exit" : "microcanonical", "dimension"_a = scene.dimension());
 }
 
 }  // namespace

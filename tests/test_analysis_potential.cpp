@@ -283,7 +283,7 @@ TEST_CASE("the general Fokker-Planck solver with a potential: mass conserved, et
   CHECK(analysis::cdf_of(grid, sol.eta.back())(0.0) > 0.01);
   // The mean's rate between t = 1000 and 1001 is <g1> over eta (the FP equation's first moment).
   const auto U = [](const Vec2& x) { return 0.4 * x.y(); };
-  const auto g = analysis::energy_coefficients(scene.shape.region, U, uniform(Vec2(10, 10) / std::sqrt(2.0)),
+  const auto g = analysis::energy_coefficients(scene.shape<2>().region, U, uniform(Vec2(10, 10) / std::sqrt(2.0)),
                                                40 * pi, 1, 1e-10);
   const auto table = analysis::tabulate(grid, g);
   double mean_g1 = 0;
@@ -303,7 +303,7 @@ TEST_CASE("the general Fokker-Planck solver with a potential: short-time moments
   // width²/12 to the variance, ~3e-4 of it) and the time steps (measured 2e-4 and 6e-4).
   const auto scene = clover_scene("tilt320", "320*pi", "potential: {expression: 0.4*y}\n");
   const auto U = [](const Vec2& x) { return 0.4 * x.y(); };
-  const auto g = analysis::energy_coefficients(scene.shape.region, U, uniform(Vec2(10, 10) / std::sqrt(2.0)),
+  const auto g = analysis::energy_coefficients(scene.shape<2>().region, U, uniform(Vec2(10, 10) / std::sqrt(2.0)),
                                                320 * pi, 1, 1e-10);
   const double E0 = 0.5, h = 0.01, t = 8;
   const auto lo = g(E0 - h), mid = g(E0), hi = g(E0 + h);

@@ -151,7 +151,7 @@ TEST_CASE("line section of the square: |p| = |vx| is conserved, crossings upward
 TEST_CASE("stroboscopic section: states at the drive phase asked for, with their kinetic energy") {
   const auto scene = bundled_scene("clover-driven.yaml", 4);
   const dynamics::PeriodicDriveFlight flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
-  const dynamics::Table table(scene.shape.region);
+  const dynamics::Table table(scene.shape<2>().region);
   const double phase = 1.0;
   const auto r = analysis::stroboscopic_section(table, flight, phase, dynamics::initial_states(scene, table, flight),
                                                 4, 300, 2, scene.mass);

@@ -1,6 +1,8 @@
 // `billiard run`, `coeffs`, `compare` and `fp` on 3-D scenes: the same outputs and guarantees
 // as in 2-D (byte-identical for any thread count, file:line errors with no output), the
 // prediction against closed forms in d = 3, and the 3-D Sinai billiard against it.
+#include "billiards/dynamics/scene.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
 #include "cli_helpers.hpp"
 
 #include <catch2/catch.hpp>
@@ -10,6 +12,8 @@
 #include <cmath>
 #include <sstream>
 #include <cstring>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -105,6 +109,36 @@ TEST_CASE("3-D initial conditions from a CSV file; 3-D scene errors name file an
   }
   fs::remove(fs::path(BILLIARDS_SOURCE_DIR) / "scenes" / ".test3-bad.csv");
   fs::remove(fs::path(BILLIARDS_SOURCE_DIR) / "scenes" / ".test3-initial.csv");
+}
+
+TEST_CASE("a scene holds the one shape of its file's dimension, with the initial states of that dimension") {
+  using namespace billiards;
+  const fs::path scenes = fs::path(BILLIARDS_SOURCE_DIR) / "scenes";
+  write_file(scenes / ".test3-initial.csv", "x,y,z,vx,vy,vz\n0.4, 0.1, -0.3, 1, 0, 0\n-0.4,0.4,0.4,0,0.6,0.8\n");
+  const auto solid = dynamics::parse_scene("shape: ../shapes/3d/sinai3.yaml\ninitial: {csv: .test3-initial.csv}\n"
+                                           "run: {time: 5}\n",
+                                           "solid.yaml", scenes.string());
+  fs::remove(scenes / ".test3-initial.csv");
+  REQUIRE(solid.dimension() == 3);
+  const auto sinai3 = geometry3::load_shape3((fs::path(BILLIARDS_SOURCE_DIR) / "shapes/3d/sinai3.yaml").string());
+  CHECK(solid.shape<3>().region.name == sinai3.region.name);
+  CHECK(solid.measures().volume == geometry3::measures_of(sinai3.region).volume);
+  CHECK(solid.measures().surface == geometry3::measures_of(sinai3.region).surface);
+  REQUIRE(solid.initial_states<3>().size() == 2);
+  CHECK(solid.initial_states<3>()[1].x == Eigen::Vector3d(-0.4, 0.4, 0.4));
+  CHECK(solid.initial_states<3>()[1].v == Eigen::Vector3d(0, 0.6, 0.8));
+  CHECK(solid.particles == 2);
+  CHECK(solid.visit_shape([](const auto& shape) { return std::is_same_v<std::decay_t<decltype(shape)>, geometry3::Shape3>; }));
+  // The other dimension's shape and states are not there: asking for them throws.
+  CHECK_THROWS_AS(solid.shape<2>(), std::bad_variant_access);
+  CHECK_THROWS_AS(solid.initial_states<2>(), std::bad_variant_access);
+
+  const auto flat = dynamics::load_scene((scenes / "clover-driven.yaml").string());
+  REQUIRE(flat.dimension() == 2);
+  CHECK(flat.shape_name() == flat.shape<2>().region.name);
+  CHECK(flat.initial_states<2>().empty());  // microcanonical
+  CHECK(flat.visit_shape([](const auto& shape) { return std::is_same_v<std::decay_t<decltype(shape)>, geometry::Shape>; }));
+  CHECK_THROWS_AS(flat.shape<3>(), std::bad_variant_access);
 }
 
 // The cube [-1/2, 1/2]³ minus a ball of radius R: V = 1 − 4πR³/3, S = 6 + 4πR², and

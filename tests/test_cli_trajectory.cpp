@@ -160,7 +160,7 @@ TEST_CASE("trajectory of a shape: a free particle at speed 1 in 2-D and 3-D, as 
     const auto rows = all_rows(out, 64);
     CHECK(same_bits(rows, followed_rows(scene, 2, 300, 0)));
     const std::size_t cols = read_json(out / "trajectory.json")["columns"].size();
-    CHECK(cols == (scene.dimension == 3 ? 9 : 7));
+    CHECK(cols == (scene.dimension() == 3 ? 9 : 7));
     for (std::size_t i = 0; i < rows.size(); i += cols) CHECK(rows[i + cols - 1] == Approx(0.5).epsilon(1e-14));
   }
 }

@@ -303,17 +303,17 @@ TEST_CASE("position-dependent drive F0 (1 + x/L) in the clover at 320 pi: <dE>, 
   REQUIRE(scene.force.kind == Force::Kind::field);
   const auto& F = scene.force.field;
   const auto c = analysis::coefficients(
-      scene.shape.region, [&](const Vec2& x) { return Vec2(F[0](x), F[1](x)); }, scene.force.omega, 1.0, 0.5);
+      scene.shape<2>().region, [&](const Vec2& x) { return Vec2(F[0](x), F[1](x)); }, scene.force.omega, 1.0, 0.5);
   CHECK(c.wall_integral_error < 1e-6 * c.wall_integral);
   CHECK(c.warnings.empty());
   // The theory's F(x) matters here: a uniform F0 would predict 3.2× less.
-  const auto uniform = analysis::coefficients(geometry::measures_of(scene.shape.region),
+  const auto uniform = analysis::coefficients(geometry::measures_of(scene.shape<2>().region),
                                               analysis::Drive{Eigen::Vector2d(30 / std::sqrt(2.0), 30 / std::sqrt(2.0)),
                                                               scene.force.omega, 1.0},
                                               0.5);
   CHECK(c.g2 > 3 * uniform.g2);
 
-  const dynamics::Table table(scene.shape.region);
+  const dynamics::Table table(scene.shape<2>().region);
   const FieldFlight flight(scene.force, std::nullopt, 1.0, table, 1e-7);
   const double dt = 8;
   dynamics::RunOptions opt;

@@ -105,7 +105,7 @@ TEST_CASE("the tangent map equals finite differences: free flights on segments, 
 
 TEST_CASE("the tangent map equals finite differences under the periodic drive and a static force") {
   const auto scene = bundled_scene("sinai-ellipse-driven.yaml", 4);
-  const dynamics::Table table(scene.shape.region);
+  const dynamics::Table table(scene.shape<2>().region);
   // A slow drive, so that the force changes the flights between collisions visibly.
   const dynamics::PeriodicDriveFlight drive{geometry::Vec2(3, 1), 7.0, 0.3};
   const dynamics::ConstantForceFlight gravity{geometry::Vec2(0.4, -2)};
@@ -182,7 +182,7 @@ TEST_CASE("the spectrum comes in conjugate pairs that sum to zero") {
   }
   // Under the drive the energy changes, but the flow stays Hamiltonian: pairs again.
   const auto scene = bundled_scene("clover-driven.yaml", 4);
-  const dynamics::Table table(scene.shape.region);
+  const dynamics::Table table(scene.shape<2>().region);
   const dynamics::PeriodicDriveFlight flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   const auto r = analysis::lyapunov_spectrum(table, flight, dynamics::initial_states(scene, table, flight), 4, 20000, 2);
   for (std::size_t i = 0; i < r.trajectories.size(); ++i) {

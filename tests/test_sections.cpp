@@ -104,7 +104,7 @@ analysis::SectionRows section_against_scan(const Table& table, const Flight& fli
 
 TEST_CASE("driven flights' crossings lie on the section, as many as a fine scan of each flight finds") {
   const auto scene = bundled_scene("clover-driven.yaml", 3);
-  const dynamics::Table table(scene.shape.region);
+  const dynamics::Table table(scene.shape<2>().region);
   const dynamics::PeriodicDriveFlight drive{geometry::Vec2(6, 2), 5.0, 0.3};  // slow: curved flights
   const auto initial = [&](std::size_t i) {
     return drive.start(dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 5)(i));
@@ -129,7 +129,7 @@ TEST_CASE("driven flights' crossings lie on the section, as many as a fine scan 
 
 TEST_CASE("3-D stroboscopic section: the states at the drive phase asked for, as a search up to each time finds") {
   const auto scene = bundled_scene("sinai3-driven.yaml", 3);
-  const dynamics::Table3 table(scene.shape3.region);
+  const dynamics::Table3 table(scene.shape<3>().region);
   const dynamics::PeriodicDriveFlight3 flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   const auto initial = dynamics::initial_states(scene, table, flight);
   const double phase = 1.0;

@@ -217,8 +217,8 @@ void check_magnetic(Coefficients& c, const dynamics::Scene& scene) {
   const double cyclotron = scene.cyclotron_vector().norm();
   c.cyclotron_radius = c.speed / cyclotron;
   c.drive_over_cyclotron = scene.force.omega / cyclotron;
-  if (scene.dimension == 2) {
-    c.inradius = inradius(scene.shape.region);
+  if (scene.dimension() == 2) {
+    c.inradius = inradius(scene.shape<2>().region);
     if (c.cyclotron_radius < c.inradius)
       c.warnings.push_back(fmt::format("the cyclotron radius r_c = {:.3g} is below the table's inradius {:.3g}: some "
                                        "orbits circle without ever meeting the wall, and those particles never diffuse "
@@ -247,7 +247,7 @@ std::optional<Coefficients> prediction_of(const dynamics::Scene& scene) {
     return c;
   }
   // A field amplitude or a potential: quadrature along the wall (2-D scenes only).
-  const auto& region = scene.shape.region;
+  const auto& region = scene.shape<2>().region;
   const ForceField F = amplitude_of(scene);
   if (!scene.potential) return coefficients(region, F, scene.force.omega, scene.mass, scene.energy);
   return coefficients(region, potential_of(scene), F, scene.force.omega, scene.mass, scene.energy);
@@ -268,7 +268,7 @@ std::optional<FokkerPlanckSolution> fokker_planck_of(const dynamics::Scene& scen
     solution.times = times;
     return solution;
   }
-  const auto& region = scene.shape.region;
+  const auto& region = scene.shape<2>().region;
   const Potential U = potential_of(scene);
   const double lowest = -wall_maximum(region, [&](const geometry::Vec2& x) { return -U(x); });
   const double highest = wall_maximum(region, U);

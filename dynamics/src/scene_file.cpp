@@ -226,7 +226,7 @@ bool lists_exits(const std::string& shape_path) {
 }  // namespace
 
 geometry::Measures Scene::measures() const {
-  return dimension == 3 ? geometry3::measures_of(shape3.region) : geometry::measures_of(shape.region);
+  return visit_shape([](const auto& shape) { return measures_of(shape.region); });
 }
 
 Scene load_scene(const std::string& path, const SceneOverrides& ov) {
@@ -267,20 +267,19 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   const YAML::Node shape_node = r.required(doc, "shape", "a scene file");
   if (!shape_node.IsScalar()) r.fail(shape_node, "'shape' is the path of a shape file");
   const std::string shape_path = (fs::path(base_dir) / shape_node.Scalar()).lexically_normal().string();
-  scene.dimension = geometry3::shape_dimension(shape_path);
-  if (scene.dimension == 3)
-    scene.shape3 = geometry3::load_shape3(shape_path, shape_set);
+  if (geometry3::shape_dimension(shape_path) == 3)
+    scene.table = SceneTable<3>{geometry3::load_shape3(shape_path, shape_set), {}};
   else
-    scene.shape = geometry::load_shape(shape_path, shape_set);
+    scene.table = SceneTable<2>{geometry::load_shape(shape_path, shape_set), {}};
 
   scene.mass = doc["mass"] ? r.positive(doc["mass"], "mass") : 1.0;
-  scene.force = read_force(r, expr, doc["force"], scene.dimension);
+  scene.force = read_force(r, expr, doc["force"], scene.dimension());
   if (const YAML::Node u = doc["potential"]) {
-    if (scene.dimension == 3) r.fail(u, "a potential is implemented in 2-D only");
-    scene.potential = read_potential(r, expr, u, Table(scene.shape.region));
+    if (scene.dimension() == 3) r.fail(u, "a potential is implemented in 2-D only");
+    scene.potential = read_potential(r, expr, u, Table(scene.shape<2>().region));
   }
   if (const YAML::Node m = doc["magnetic"]) {
-    scene.magnetic_field = read_magnetic(r, m, scene.dimension);
+    scene.magnetic_field = read_magnetic(r, m, scene.dimension());
     if (doc["charge"]) scene.charge = r.number(doc["charge"]);
     if (scene.magnetic() && scene.charge == 0)
       r.fail(doc["charge"], "the charge must not be 0 in a magnetic field (with q = 0 the field does nothing: remove it)");
@@ -291,7 +290,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   } else if (const YAML::Node q = doc["charge"]) {
     r.fail(q, "'charge' is the charge in a magnetic field: the scene has no 'magnetic'");
   }
-  if (scene.dimension == 3 && scene.force.kind == Force::Kind::constant && !scene.magnetic())
+  if (scene.dimension() == 3 && scene.force.kind == Force::Kind::constant && !scene.magnetic())
     r.fail(doc["force"]["constant"], "a constant force is implemented in 3-D only with a magnetic field (periodic and "
                                      "none are implemented without one)");
   if (const YAML::Node integ = doc["integrator"]) {
@@ -330,16 +329,12 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   if (const YAML::Node csv = init["csv"]) {
     if (!csv.IsScalar()) r.fail(csv, "'csv' is the path of an initial-condition file");
     scene.initial_csv = (fs::path(base_dir) / csv.Scalar()).lexically_normal().string();
-    if (scene.dimension == 3) {
-      const Table3 table(scene.shape3.region);
-      scene.initial_states3 = read_initial_csv<State3>(scene.initial_csv,
-                                                                  [&](const auto& x) { return table.contains(x); });
-      scene.particles = scene.initial_states3.size();
-    } else {
-      const Table table(scene.shape.region);
-      scene.initial_states = read_initial_csv<State>(scene.initial_csv, [&](const auto& x) { return table.contains(x); });
-      scene.particles = scene.initial_states.size();
-    }
+    std::visit([&]<int D>(SceneTable<D>& t) {
+      const BasicTable<double, D> table(t.shape.region);
+      t.initial_states = read_initial_csv<BasicState<double, D>>(scene.initial_csv,
+                                                                 [&](const auto& x) { return table.contains(x); });
+      scene.particles = t.initial_states.size();
+    }, scene.table);
   } else {
     const char* kind = init["through_exit"] ? "through_exit" : "microcanonical";
     const YAML::Node ensemble = r.required(init, kind, "'initial'");

@@ -14,7 +14,7 @@ SceneFrames empty_frames(const Scene& scene, std::size_t particles, std::size_t 
   if (!(time > 0)) throw std::invalid_argument("an animation needs a positive time");
   SceneFrames f;
   f.particles = particles;
-  f.dimension = scene.dimension;
+  f.dimension = scene.dimension();
   const SampleClock clock{0, time / double(frames - 1)};
   for (std::size_t k = 0; k < frames; ++k) f.times.push_back(clock.time(k));
   f.positions.assign(frames * particles * std::size_t(f.dimension), std::nan(""));

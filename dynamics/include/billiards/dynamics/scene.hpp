@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 namespace billiards::dynamics {
@@ -39,14 +41,24 @@ struct Potential {
   std::array<CoordinateFunction, 2> gradient;
 };
 
-/// A scene in 2-D or 3-D: `dimension` says which of `shape`/`shape3` and
-/// `initial_states`/`initial_states3` it uses.
+/// The shape file's type in dimension D.
+template <int D>
+using ShapeOf = std::conditional_t<D == 3, geometry3::Shape3, geometry::Shape>;
+
+/// A scene's table in dimension D: its shape, and the particles' initial states when they were
+/// read from a CSV file (else empty).
+template <int D>
+struct SceneTable {
+  ShapeOf<D> shape;
+  std::vector<BasicState<double, D>> initial_states;
+};
+
+/// A scene in 2-D or 3-D: its `table` holds the shape (and initial states) of the one dimension
+/// the shape file has.
 struct Scene {
   std::string file;            // the scene file
   std::string text;            // its text, copied into summary.json
-  int dimension = 2;           // the shape file's
-  geometry::Shape shape;       // 2-D
-  geometry3::Shape3 shape3;    // 3-D
+  std::variant<SceneTable<2>, SceneTable<3>> table;
   double mass = 1;
   /// Microcanonical ensemble at `energy`, unless the initial states were read from a CSV file
   /// or the particles enter through the shape's exits.
@@ -55,8 +67,6 @@ struct Scene {
   /// file lists, at energy E, with the boundary measure cos φ ds dφ (analysis/escape.hpp samples
   /// them: the exits are phase-space objects).  Where the scene file says so, for its errors.
   std::optional<geometry::SourceRef> through_exit;
-  std::vector<State> initial_states;                // 2-D
-  std::vector<State3> initial_states3;               // 3-D
   std::string initial_csv;
   Force force;
   std::optional<Potential> potential;
@@ -72,10 +82,26 @@ struct Scene {
   std::uint64_t seed = 1;
   std::string output_dir;
 
-  // The shape's, in either dimension.
-  const std::string& shape_name() const { return dimension == 3 ? shape3.region.name : shape.region.name; }
+  /// 2 or 3, the shape file's dimension.
+  int dimension() const { return table.index() == 0 ? 2 : 3; }
+  /// The shape and the initial states in dimension D; std::bad_variant_access when the scene
+  /// has the other dimension.
+  template <int D>
+  const ShapeOf<D>& shape() const { return std::get<SceneTable<D>>(table).shape; }
+  template <int D>
+  ShapeOf<D>& shape() { return std::get<SceneTable<D>>(table).shape; }
+  template <int D>
+  const std::vector<BasicState<double, D>>& initial_states() const { return std::get<SceneTable<D>>(table).initial_states; }
+  /// fn(shape) with the shape of the scene's dimension.
+  template <class Fn>
+  decltype(auto) visit_shape(Fn&& fn) const {
+    return std::visit([&fn](const auto& t) -> decltype(auto) { return fn(t.shape); }, table);
+  }
+  const std::string& shape_name() const {
+    return visit_shape([](const auto& shape) -> const std::string& { return shape.region.name; });
+  }
   const std::map<std::string, double>& shape_parameters() const {
-    return dimension == 3 ? shape3.parameters : shape.parameters;
+    return visit_shape([](const auto& shape) -> const std::map<std::string, double>& { return shape.parameters; });
   }
   geometry::Measures measures() const;
   /// Is there a magnetic field?  Then Ω = qB/m is its cyclotron vector, and in 2-D its z

@@ -20,7 +20,7 @@ namespace billiards::dynamics {
 /// whole ensemble (a free scene runs the straight-line kernels with no drive code in them).
 template <class Run>
 auto with_flight(const Scene& scene, Run&& run) {
-  if (scene.dimension == 3) {  // (the scene file refuses forces that 3-D has no flight for)
+  if (scene.dimension() == 3) {  // (the scene file refuses forces that 3-D has no flight for)
     const Vec3 accel = scene.force.amplitude / scene.mass;
     if (scene.magnetic()) {
       const Vec3 omega_c = scene.cyclotron_vector();
@@ -36,7 +36,7 @@ auto with_flight(const Scene& scene, Run&& run) {
   // Closed forms where they exist; the integrator only for a position-dependent drive or a
   // potential.
   if (scene.potential || scene.force.kind == Force::Kind::field)
-    return run(FieldFlight(scene.force, scene.potential, scene.mass, Table(scene.shape.region),
+    return run(FieldFlight(scene.force, scene.potential, scene.mass, Table(scene.shape<2>().region),
                            scene.integrator_tolerance));
   const Vec2 accel = scene.force.amplitude / scene.mass;
   if (scene.magnetic()) {  // (the scene file refuses the rest)
@@ -68,8 +68,7 @@ using TableFor = BasicTable<double, Flight::State::dimension>;
 /// The scene's table for `Flight`.
 template <class Flight>
 TableFor<Flight> table_of(const Scene& scene) {
-  if constexpr (is_3d<Flight>) return TableFor<Flight>(scene.shape3.region);
-  else return TableFor<Flight>(scene.shape.region);
+  return TableFor<Flight>(scene.shape<Flight::State::dimension>().region);
 }
 
 /// The scene's record times and mass.  A forced flight costs ~10 containment tests, so every
@@ -94,10 +93,7 @@ auto initial_states(const Scene& scene, const TableFor<Flight>& table, const Fli
     throw InputError(scene.through_exit->file, scene.through_exit->line,
                      "particles entering through exits ('through_exit') are for open tables: billiard escape and "
                      "billiardkit.escape; this command needs 'microcanonical' or 'csv'");
-  const auto* given = [&] {
-    if constexpr (is_3d<Flight>) return &scene.initial_states3;
-    else return &scene.initial_states;
-  }();
+  const auto* given = &scene.initial_states<Flight::State::dimension>();
   const auto sampled = microcanonical(table, flight, std::sqrt(2 * scene.energy / scene.mass), scene.seed);
   return [given, sampled, flight](std::size_t i) { return given->empty() ? sampled(i) : flight.start((*given)[i]); };
 }
