@@ -135,10 +135,11 @@ TEST_CASE("lock step: each batch's hits are the scalar search's, bit for bit") {
         CHECK(found > compared / 2);        // most flights end on a wall...
         CHECK(found < compared);            // ...and some at their short horizon
         CHECK(false_certificates == 0);
-        // Most midpoints the table's test is certain of are certified in the lanes too (lanes
-        // handed back to the scalar search are not); the share depends on the sample of
-        // trajectories (about two thirds in the clover at 4π, the lowest seen).
-        CHECK(certified > certain / 2);
+        // At least half the midpoints the table's test is certain of are certified in the lanes
+        // too (lanes handed back to the scalar search are not); the share depends on the sample
+        // of trajectories (about two thirds in the clover at 4π, the lowest seen; the circle and
+        // the annulus at 4π have no such midpoint).
+        CHECK(2 * certified >= certain);
       }
     }
 }
