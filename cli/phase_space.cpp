@@ -57,7 +57,7 @@ dynamics::Scene load_phase_space_scene(const PhaseSpaceArgs& args) {
 }
 
 void refuse_forced_magnetic(const dynamics::Scene& scene, const std::string& command) {
-  if (scene.magnetic() && scene.force.kind != dynamics::Force::Kind::none)
+  if (scene.searches_to_a_horizon())
     throw InputError(scene.file, 0,
                      command + " follows particles collision by collision without a time horizon, which a magnetic "
                                "field with a force needs (billiard run follows them to its times)");

@@ -47,7 +47,7 @@ Scene scene_of(const py::object& table, std::optional<std::size_t> particles, st
     return scene;
   }
   scene = table.cast<Scene>();
-  if (scene.magnetic() && scene.force.kind != dynamics::Force::Kind::none)
+  if (scene.searches_to_a_horizon())
     throw py::value_error("a magnetic field with a force needs a time horizon for its collision search; the "
                           "phase-space functions follow particles collision by collision (bk.run follows them to "
                           "its times)");

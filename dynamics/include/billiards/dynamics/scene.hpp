@@ -109,6 +109,10 @@ struct Scene {
   bool magnetic() const { return magnetic_field && *magnetic_field != Eigen::Vector3d::Zero(); }
   Eigen::Vector3d cyclotron_vector() const { return charge * *magnetic_field / mass; }
   double cyclotron_frequency() const { return cyclotron_vector().z(); }
+  /// Does a particle's collision search need a time horizon?  A magnetic flight under a force
+  /// may circle away from every wall for ever (its certified scan has no end without one), so
+  /// it is followed to a time, not collision by collision.
+  bool searches_to_a_horizon() const { return magnetic() && force.kind != Force::Kind::none; }
 };
 
 /// Command-line overrides of a scene.
