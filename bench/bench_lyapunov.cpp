@@ -2,8 +2,9 @@
 // run on one core: `evolve` alone (the collision search and the bounce), the boundary map
 // (plus s and p of every hit) and the tangent dynamics of `lyapunov` (plus the collision
 // Jacobian and a 4 × 4 Gram–Schmidt per collision; 6 × 6 in 3-D); free flights in three
-// tables and the driven clover, and in 3-D free flights in the Sinai cube and the ball and
-// the driven Sinai cube (no boundary map in 3-D).
+// tables, the driven clover and the stadium in a magnetic field, and in 3-D free flights in
+// the Sinai cube and the ball, the driven Sinai cube and the Sinai cube in a magnetic field
+// (no boundary map in 3-D).
 // Usage: bench_lyapunov [collisions per case, default 2e6]
 #include "billiards/analysis/boundary_map.hpp"
 #include "billiards/analysis/lyapunov.hpp"
@@ -70,6 +71,12 @@ int main(int argc, char** argv) {
   const dynamics::PeriodicDriveFlight drive{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   compare("clover (driven)", table, &coordinates, drive, dynamics::initial_states(scene, table, drive)(0),
           collisions / 10);
+  const auto stadium = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/stadium-magnetic.yaml");
+  const dynamics::Table stadium_table(stadium.shape.region);
+  const analysis::BoundaryCoordinates stadium_coordinates(stadium.shape.region);
+  const dynamics::MagneticFlight field{stadium.cyclotron_frequency()};
+  compare("stadium (magnetic)", stadium_table, &stadium_coordinates, field,
+          dynamics::initial_states(stadium, stadium_table, field)(0), collisions);
   for (const char* name : {"sinai3", "ball"}) {
     const auto shape = geometry3::load_shape3(fmt::format("{}/shapes/3d/{}.yaml", BILLIARDS_SOURCE_DIR, name));
     const dynamics::Table3 table3(shape.region);
@@ -82,4 +89,10 @@ int main(int argc, char** argv) {
                                              scene3.force.phase};
   compare<dynamics::PeriodicDriveFlight3, void>("sinai3 3-D (driven)", table3, nullptr, drive3,
                                                 dynamics::initial_states(scene3, table3, drive3)(0), collisions / 10);
+  const auto magnetic3 = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/sinai3-magnetic.yaml");
+  const dynamics::Table3 magnetic_table3(magnetic3.shape3.region);
+  const dynamics::MagneticFlight3 helix{magnetic3.cyclotron_vector()};
+  compare<dynamics::MagneticFlight3, void>("sinai3 3-D (magnetic)", magnetic_table3, nullptr, helix,
+                                           dynamics::initial_states(magnetic3, magnetic_table3, helix)(0),
+                                           collisions / 10);
 }

@@ -1,7 +1,8 @@
 // billiard bmap SHAPE|SCENE: the boundary map in Birkhoff coordinates (s, p) of every collision
 // of an ensemble, or a Poincaré section of its flights on a line (--section "y = 0"), or the
 // stroboscopic section of a driven scene (--strobe PHASE); as .npy, CSV and a picture drawn by
-// scripts/plot_bmap.py.  In 3-D: plane sections only (--section "z = 0").
+// scripts/plot_bmap.py.  In 3-D: plane sections (--section "z = 0") and the stroboscopic
+// section.
 #include "commands.hpp"
 #include "output.hpp"
 #include "phase_space.hpp"
@@ -82,7 +83,7 @@ void write_rows_csv(std::ostream& out, const SectionRows& r, const std::array<co
 
 /// The rows of the section asked for, with the flight the scene needs.
 struct Section {
-  std::string kind;  // "bmap", "section" or "strobe"
+  std::string kind;  // "bmap", "section", "section3", "strobe" or "strobe3"
   SectionRows rows;
 };
 
@@ -102,18 +103,18 @@ Section compute(const dynamics::Scene& scene, const Flight& flight, const BmapAr
                                  "picture); not for this scene (force {}{})",
                                  scene.force.name(), scene.magnetic() ? ", magnetic" : ""));
   }
+  if (args.strobe) {
+    if constexpr (analysis::driven_flight<Flight>)
+      return {D == 2 ? "strobe" : "strobe3",
+              analysis::stroboscopic_section(table, flight, *args.strobe, initial, n, k, args.threads, scene.mass, tick)};
+    throw InputError("--strobe", 0,
+                     fmt::format("a stroboscopic section needs a periodic drive (scene force: {})", scene.force.name()));
+  }
   if constexpr (D == 3) {
     throw InputError(scene.file, 0,
-                     "the boundary map's coordinates (s, p) and the stroboscopic section are 2-D only: for a 3-D table "
-                     "give a plane section, such as --section \"z = 0\"");
+                     "the boundary map's coordinates (s, p) are 2-D only: for a 3-D table give a plane section, such "
+                     "as --section \"z = 0\", or --strobe PHASE for a driven scene");
   } else {
-    if (args.strobe) {
-      if constexpr (analysis::driven_flight<Flight>)
-        return {"strobe",
-                analysis::stroboscopic_section(table, flight, *args.strobe, initial, n, k, args.threads, scene.mass, tick)};
-      throw InputError("--strobe", 0,
-                       fmt::format("a stroboscopic section needs a periodic drive (scene force: {})", scene.force.name()));
-    }
     const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
     return {"bmap", analysis::boundary_map(table, coordinates, flight, initial, n, k, args.threads, scene.mass, tick)};
   }
@@ -128,6 +129,7 @@ std::vector<std::string> columns_of(const std::string& kind) {
   if (kind == "section") return names(analysis::section_columns);
   if (kind == "section3") return names(analysis::section3_columns);
   if (kind == "strobe") return names(analysis::strobe_columns);
+  if (kind == "strobe3") return names(analysis::strobe3_columns);
   return names(analysis::bmap_columns);
 }
 
@@ -136,6 +138,7 @@ void write_csv(const OutputDir& out, const Section& s) {
     if (s.kind == "section") write_rows_csv(os, s.rows, analysis::section_columns);
     else if (s.kind == "section3") write_rows_csv(os, s.rows, analysis::section3_columns);
     else if (s.kind == "strobe") write_rows_csv(os, s.rows, analysis::strobe_columns);
+    else if (s.kind == "strobe3") write_rows_csv(os, s.rows, analysis::strobe3_columns);
     else write_rows_csv(os, s.rows, analysis::bmap_columns);
   });
 }
@@ -143,6 +146,7 @@ void write_csv(const OutputDir& out, const Section& s) {
 void run_bmap(const BmapArgs& args) {
   if (!args.section.empty() && args.strobe) throw InputError("--section", 0, "give --section or --strobe, not both");
   auto scene = load_phase_space_scene(args);
+  refuse_forced_magnetic(scene, "billiard bmap");
   if (!args.section.empty()) {  // (before any work)
     if (scene.dimension() == 3) parse_section<3>(args.section);
     else parse_section<2>(args.section);

@@ -64,6 +64,7 @@ std::vector<analysis::EscapeRecord> escapes_of(const dynamics::Scene& scene, con
 
 void run_escape(const EscapeArgs& args) {
   auto scene = load_phase_space_scene(args);
+  refuse_forced_magnetic(scene, "billiard escape");
   if (args.entering) scene.through_exit = geometry::SourceRef{"--entering", 0};
   const std::string out_dir = !args.out.empty() ? args.out : scene.output_dir + "-escape";
   const double speed = std::sqrt(2 * scene.energy / scene.mass);

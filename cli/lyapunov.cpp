@@ -49,8 +49,10 @@ nlohmann::json spectrum_json(const analysis::BasicLyapunovSpectrum<D>& r, const 
           {"table", scene.file},
           {"shape", scene.shape_name()},
           {"force", scene.force.name()},
+          {"magnetic", scene.magnetic()},
           {"seed", scene.seed},
-          {"escapes", r.escapes()}};
+          {"escapes", r.escapes()},
+          {"trapped", r.trapped()}};
 }
 
 using AnySpectrum = std::variant<analysis::BasicLyapunovSpectrum<2>, analysis::BasicLyapunovSpectrum<3>>;
@@ -67,9 +69,9 @@ AnySpectrum lyapunov_of(const dynamics::Scene& scene, const PhaseSpaceArgs& args
                                          args.collisions, args.threads, [&](std::size_t d) { progress.update(d); });
     } else {
       throw InputError(scene.file, 0,
-                       fmt::format("Lyapunov exponents are computed for free flights and the uniform periodic drive "
-                                   "(lab picture) in 2-D and 3-D and a static force in 2-D, not for this scene (force "
-                                   "{}{})",
+                       fmt::format("Lyapunov exponents are computed for free flights, the uniform periodic drive "
+                                   "(lab picture) and a magnetic field alone in 2-D and 3-D, and a static force in "
+                                   "2-D; not for this scene (force {}{})",
                                    scene.force.name(), scene.magnetic() ? ", magnetic" : ""));
     }
   });
@@ -85,12 +87,15 @@ AnySpectrum lyapunov_of(const dynamics::Scene& scene, const PhaseSpaceArgs& args
 template <int D>
 void print_spectrum(const analysis::BasicLyapunovSpectrum<D>& r, const dynamics::Scene& scene, std::size_t collisions,
                     const nlohmann::json& j) {
-  fmt::print("{} ({}): {} trajectories x {} collisions, speed {:.6g}, mean free time {:.6g}\n", scene.shape_name(),
-             scene.force.name(), scene.particles, collisions, j["speed"].get<double>(), j["mean_free_time"].get<double>());
+  fmt::print("{} ({}{}): {} trajectories x {} collisions, speed {:.6g}, mean free time {:.6g}\n", scene.shape_name(),
+             scene.force.name(), scene.magnetic() ? ", magnetic field" : "", scene.particles, collisions,
+             j["speed"].get<double>(), j["mean_free_time"].get<double>());
   fmt::print("maximal exponent: {:.6g} ± {:.2g} per unit time, {:.6g} ± {:.2g} per collision\n", r.per_time[0].mean,
              r.per_time[0].se, r.per_collision[0].mean, r.per_collision[0].se);
   for (int k = 0; k < 2 * D; ++k)
     fmt::print("  lambda_{} = {:+.6g} ± {:.2g} per unit time\n", k + 1, r.per_time[k].mean, r.per_time[k].se);
+  if (r.trapped() > 0)
+    fmt::print("{} particle(s) left out: on closed cyclotron orbits that meet no wall\n", r.trapped());
 }
 
 }  // namespace

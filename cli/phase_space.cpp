@@ -56,8 +56,11 @@ dynamics::Scene load_phase_space_scene(const PhaseSpaceArgs& args) {
   return scene;
 }
 
-void refuse_3d(const dynamics::Scene& scene, const std::string& command) {
-  if (scene.dimension() != 2) throw InputError(scene.file, 0, command + " works on 2-D tables only");
+void refuse_forced_magnetic(const dynamics::Scene& scene, const std::string& command) {
+  if (scene.magnetic() && scene.force.kind != dynamics::Force::Kind::none)
+    throw InputError(scene.file, 0,
+                     command + " follows particles collision by collision without a time horizon, which a magnetic "
+                               "field with a force needs (billiard run follows them to its times)");
 }
 
 }  // namespace billiards::cli

@@ -36,8 +36,9 @@ void add_phase_space_options(CLI::App* cmd, PhaseSpaceArgs& args, std::size_t pa
 /// The scene of a scene file, or a shape file as a free scene (energy ½, mass 1: speed 1);
 /// with the command line's particles and seed; 2-D or 3-D.
 dynamics::Scene load_phase_space_scene(const PhaseSpaceArgs& args);
-/// Refuses a 3-D scene: "COMMAND works on 2-D tables only".
-void refuse_3d(const dynamics::Scene& scene, const std::string& command);
+/// Refuses a magnetic field with a force: such a flight's collision search needs a time horizon
+/// (an orbit may circle forever), and `command` follows particles collision by collision.
+void refuse_forced_magnetic(const dynamics::Scene& scene, const std::string& command);
 
 /// The short chaos check that `coeffs` and `compare` state beside their prediction (chaos.cpp):
 /// `billiard chaos --json`'s keys for 8 orbits x 20000 collisions, and "reason".

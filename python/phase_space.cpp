@@ -1,6 +1,7 @@
-// billiardkit's phase-space functions: boundary_map, lyapunov, chaos and escape, on a Shape
-// (free flights at speed 1) or a 2-D Scene (its force, energy and seed), with the numbers of
-// `billiard bmap`, `billiard lyapunov`, `billiard chaos` and `billiard escape`.
+// billiardkit's phase-space functions: boundary_map, lyapunov, chaos and escape, on a Shape or a
+// Shape3 (free flights at speed 1) or a Scene (its force, energy and seed), with the numbers of
+// `billiard bmap`, `billiard lyapunov`, `billiard chaos` and `billiard escape`; like the CLI,
+// boundary_map refuses 3-D tables (no Birkhoff coordinates on a surface).
 #include "billiards/analysis/boundary_map.hpp"
 #include "billiards/analysis/chaos.hpp"
 #include "billiards/analysis/escape.hpp"
@@ -15,6 +16,8 @@
 #include <fmt/core.h>
 
 #include <memory>
+#include <optional>
+#include <variant>
 
 namespace py = pybind11;
 using namespace pybind11::literals;
@@ -25,21 +28,32 @@ namespace {
 
 using dynamics::Scene;
 
-/// A Shape as a free scene at speed 1 with `particles` microcanonical particles, or a 2-D Scene
-/// with its own (particles overriding its count when given).
+/// A Shape or Shape3 as a free scene at speed 1 with `particles` microcanonical particles (as
+/// the CLI's load_phase_space_scene), or a Scene with its own (particles overriding its count
+/// when given); a magnetic field with a force is refused (as refuse_forced_magnetic).
 Scene scene_of(const py::object& table, std::optional<std::size_t> particles, std::optional<std::uint64_t> seed) {
   Scene scene;
-  if (py::isinstance<geometry::Shape>(table)) {
-    scene.table = dynamics::SceneTable<2>{table.cast<geometry::Shape>(), {}};
+  const bool shape = py::isinstance<geometry::Shape>(table), shape3 = py::isinstance<geometry3::Shape3>(table);
+  if (shape || shape3) {
+    if (shape3) {
+      scene.table = dynamics::SceneTable<3>{table.cast<geometry3::Shape3>(), {}};
+      scene.force.amplitude = Eigen::VectorXd::Zero(3);
+    } else {
+      scene.table = dynamics::SceneTable<2>{table.cast<geometry::Shape>(), {}};
+    }
     scene.energy = 0.5;
     scene.particles = particles.value_or(10);
     scene.seed = seed.value_or(1);
     return scene;
   }
   scene = table.cast<Scene>();
-  if (scene.dimension() != 2) throw py::value_error("the phase-space functions work on 2-D tables only");
+  if (scene.magnetic() && scene.force.kind != dynamics::Force::Kind::none)
+    throw py::value_error("a magnetic field with a force needs a time horizon for its collision search; the "
+                          "phase-space functions follow particles collision by collision (bk.run follows them to "
+                          "its times)");
   if (particles) {
-    if (!scene.initial_states<2>().empty() && *particles > scene.initial_states<2>().size())
+    const std::size_t given = scene.dimension() == 3 ? scene.initial_states<3>().size() : scene.initial_states<2>().size();
+    if (given > 0 && *particles > given)
       throw py::value_error("more particles than the scene's initial-condition file holds");
     scene.particles = *particles;
   }
@@ -54,6 +68,9 @@ py::array_t<double> rows_array(const analysis::SectionRows& r) {
 py::array_t<double> boundary_map(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
                                  std::optional<std::uint64_t> seed, int threads) {
   const Scene scene = scene_of(table, particles, seed);
+  if (scene.dimension() == 3)
+    throw py::value_error("a 3-D table has no boundary map (Birkhoff coordinates need a curve): its plane sections "
+                          "are `billiard bmap --section`'s");
   const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
   analysis::SectionRows rows;
   {
@@ -61,7 +78,7 @@ py::array_t<double> boundary_map(const py::object& table, std::optional<std::siz
     rows = dynamics::with_flight(scene, [&](const auto& flight) {
       using Flight = std::decay_t<decltype(flight)>;
       if constexpr (dynamics::is_3d<Flight>) {
-        return analysis::SectionRows{};  // (refused by scene_of)
+        return analysis::SectionRows{};  // (refused above)
       } else {
         const auto t = dynamics::table_of<Flight>(scene);
         return analysis::boundary_map(t, coordinates, flight, dynamics::initial_states(scene, t, flight),
@@ -72,30 +89,15 @@ py::array_t<double> boundary_map(const py::object& table, std::optional<std::siz
   return rows_array(rows);
 }
 
-py::dict lyapunov(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
-                  std::optional<std::uint64_t> seed, int threads) {
-  const Scene scene = scene_of(table, particles, seed);
-  analysis::LyapunovSpectrum r;
-  {
-    py::gil_scoped_release unlocked;
-    r = dynamics::with_flight(scene, [&](const auto& flight) {
-      using Flight = std::decay_t<decltype(flight)>;
-      if constexpr (analysis::tangent_flight<Flight> && !dynamics::is_3d<Flight>) {  // (3-D refused by scene_of)
-        const auto t = dynamics::table_of<Flight>(scene);
-        return analysis::lyapunov_spectrum(t, flight, dynamics::initial_states(scene, t, flight), scene.particles,
-                                           collisions, threads);
-      } else {
-        throw py::value_error(fmt::format("no tangent dynamics for the force '{}' (free, constant and periodic only)",
-                                          scene.force.name()));
-        return analysis::LyapunovSpectrum{};
-      }
-    });
-  }
-  std::vector<double> per_time(r.trajectories.size() * 4), per_collision(per_time.size());
+/// A spectrum's numbers as `billiard lyapunov --json` has them, with per-trajectory arrays.
+template <int D>
+py::dict spectrum_dict(const analysis::BasicLyapunovSpectrum<D>& r) {
+  constexpr int m = 2 * D;
+  std::vector<double> per_time(r.trajectories.size() * m), per_collision(per_time.size());
   for (std::size_t i = 0; i < r.trajectories.size(); ++i)
-    for (int k = 0; k < 4; ++k) {
-      per_time[i * 4 + k] = r.exponent(i, k);
-      per_collision[i * 4 + k] = r.trajectories[i].log_stretch[k] / double(r.trajectories[i].collisions);
+    for (int k = 0; k < m; ++k) {
+      per_time[i * m + k] = r.exponent(i, k);
+      per_collision[i * m + k] = r.trajectories[i].log_stretch[k] / double(r.trajectories[i].collisions);
     }
   const auto n = py::ssize_t(r.trajectories.size());
   std::vector<double> spectrum, spectrum_se;
@@ -103,24 +105,50 @@ py::dict lyapunov(const py::object& table, std::optional<std::size_t> particles,
   return py::dict("lyapunov"_a = r.per_time[0].mean, "lyapunov_se"_a = r.per_time[0].se,
                   "lyapunov_per_collision"_a = r.per_collision[0].mean,
                   "lyapunov_per_collision_se"_a = r.per_collision[0].se,
-                  "spectrum"_a = py::array_t<double>(4, spectrum.data()),
-                  "spectrum_se"_a = py::array_t<double>(4, spectrum_se.data()),
-                  "per_trajectory"_a = py::array_t<double>({n, py::ssize_t(4)}, per_time.data()),
-                  "per_trajectory_per_collision"_a = py::array_t<double>({n, py::ssize_t(4)}, per_collision.data()),
-                  "escapes"_a = r.escapes());
+                  "spectrum"_a = py::array_t<double>(m, spectrum.data()),
+                  "spectrum_se"_a = py::array_t<double>(m, spectrum_se.data()),
+                  "per_trajectory"_a = py::array_t<double>({n, py::ssize_t(m)}, per_time.data()),
+                  "per_trajectory_per_collision"_a = py::array_t<double>({n, py::ssize_t(m)}, per_collision.data()),
+                  "escapes"_a = r.escapes(), "trapped"_a = r.trapped(), "dimension"_a = D);
 }
 
-py::dict chaos(const geometry::Shape& shape, std::size_t orbits, std::size_t collisions, std::uint64_t seed,
+py::dict lyapunov(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
+                  std::optional<std::uint64_t> seed, int threads) {
+  const Scene scene = scene_of(table, particles, seed);
+  using AnySpectrum = std::variant<analysis::BasicLyapunovSpectrum<2>, analysis::BasicLyapunovSpectrum<3>>;
+  AnySpectrum r;
+  {
+    py::gil_scoped_release unlocked;
+    r = dynamics::with_flight(scene, [&](const auto& flight) -> AnySpectrum {
+      using Flight = std::decay_t<decltype(flight)>;
+      if constexpr (analysis::tangent_flight<Flight>) {
+        const auto t = dynamics::table_of<Flight>(scene);
+        return analysis::lyapunov_spectrum(t, flight, dynamics::initial_states(scene, t, flight), scene.particles,
+                                           collisions, threads);
+      } else {
+        throw py::value_error(fmt::format("no tangent dynamics for the force '{}'{} (free, constant, periodic and a "
+                                          "magnetic field alone only)",
+                                          scene.force.name(), scene.magnetic() ? " in a magnetic field" : ""));
+        return analysis::LyapunovSpectrum{};
+      }
+    });
+  }
+  return std::visit([](const auto& spectrum) { return spectrum_dict(spectrum); }, r);
+}
+
+py::dict chaos(const py::object& shape, std::size_t orbits, std::size_t collisions, std::uint64_t seed,
                int threads) {
   analysis::ChaosOptions o;
   o.orbits = orbits;
   o.collisions = collisions;
   o.seed = seed;
   o.threads = threads;
+  const auto* shape3 = py::isinstance<geometry3::Shape3>(shape) ? shape.cast<const geometry3::Shape3*>() : nullptr;
+  const auto* shape2 = shape3 ? nullptr : shape.cast<const geometry::Shape*>();
   analysis::ChaosVerdict v;
   {
     py::gil_scoped_release unlocked;
-    v = analysis::chaos_of(shape.region, o);
+    v = shape3 ? analysis::chaos_of(shape3->region, o) : analysis::chaos_of(shape2->region, o);
   }
   std::vector<double> exponents, distances;
   for (const auto& e : v.orbits) exponents.push_back(e.lyapunov_per_collision), distances.push_back(e.distance);
@@ -140,20 +168,33 @@ py::dict escape(const py::object& table, std::optional<std::size_t> particles, s
                 std::optional<std::uint64_t> seed, bool entering, int threads) {
   Scene scene = scene_of(table, particles, seed);
   if (entering) scene.through_exit = geometry::SourceRef{"entering=True", 0};
-  const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
-  const analysis::Exits exits(coordinates, analysis::read_exits(scene.shape<2>(), coordinates));
-  if (exits.empty()) throw py::value_error("the shape lists no exits: nothing can escape");
+  // The exits of the table's dimension: arcs of the boundary (2-D, total length) or discs on
+  // faces (3-D, total area), as `billiard escape` reads them.
+  std::optional<analysis::BoundaryCoordinates> coordinates;
+  std::optional<analysis::Exits> exits;
+  std::optional<analysis::Exits3> exits3;
+  if (scene.dimension() == 3) {
+    exits3.emplace(analysis::read_exits3(scene.shape<3>()));
+  } else {
+    coordinates.emplace(scene.shape<2>().region);
+    exits.emplace(*coordinates, analysis::read_exits(scene.shape<2>(), *coordinates));
+  }
+  if (exits3 ? exits3->empty() : exits->empty()) throw py::value_error("the shape lists no exits: nothing can escape");
+  const double exit_measure = exits3 ? exits3->area() : exits->length();
   std::vector<analysis::EscapeRecord> records;
   {
     py::gil_scoped_release unlocked;
     records = dynamics::with_flight(scene, [&](const auto& flight) {
       using Flight = std::decay_t<decltype(flight)>;
+      const auto t = dynamics::table_of<Flight>(scene);
       if constexpr (dynamics::is_3d<Flight>) {
-        return std::vector<analysis::EscapeRecord>{};  // (refused by scene_of)
+        const auto enter = [&](double speed, auto& rng) { return exits3->entering_state(speed, rng); };
+        return analysis::escape_times(t, flight, analysis::open_table_initial_states(scene, t, flight, enter),
+                                      [&](const auto& hit) { return exits3->contains(hit.wall, hit.point); },
+                                      scene.particles, collisions, threads);
       } else {
-        const auto t = dynamics::table_of<Flight>(scene);
-        return analysis::escape_times(t, coordinates, exits, flight,
-                                      analysis::open_table_initial_states(scene, t, flight, coordinates, exits),
+        return analysis::escape_times(t, *coordinates, *exits, flight,
+                                      analysis::open_table_initial_states(scene, t, flight, *coordinates, *exits),
                                       scene.particles, collisions, threads);
       }
     });
@@ -169,11 +210,11 @@ py::dict escape(const py::object& table, std::optional<std::size_t> particles, s
   return py::dict("escape_times"_a = array_of(times), "collisions"_a = array_of(counts),
                   "escaped"_a = py::array(py::cast(escaped)).attr("astype")("bool"),
                   "mean_escape_time"_a = summary.mean, "mean_escape_time_se"_a = summary.se,
-                  "exit_length"_a = exits.length(),
-                  "kac_mean_escape_time"_a = analysis::kac_mean_escape_time(V, exits.length(), speed, 2),
+                  "exit_length"_a = exit_measure,
+                  "kac_mean_escape_time"_a = analysis::kac_mean_escape_time(V, exit_measure, speed, scene.dimension()),
                   "survival_t"_a = array_of(P.t), "survival_P"_a = array_of(P.P),
                   "still_inside"_a = summary.still_inside(scene.particles), "speed"_a = speed,
-                  "ensemble"_a = scene.through_exit ? "through_exit" : "microcanonical");
+                  "ensemble"_a = scene.through_exit ? "through_exit" : "microcanonical", "dimension"_a = scene.dimension());
 }
 
 }  // namespace
@@ -190,7 +231,7 @@ columns particle, collision, s, p, t, energy -- `billiard bmap`'s bmap.npy (docs
         "threads"_a = 0, "Is the undriven table chaotic and ergodic? `billiard chaos --json`'s main keys.");
   m.def("escape", &escape, "table"_a, py::kw_only(), "particles"_a = py::none(), "collisions"_a = 1000000,
         "seed"_a = py::none(), "entering"_a = false, "threads"_a = 0,
-        R"(Escape times through the exits of a Shape (free, speed 1) or a 2-D Scene (its ensemble: inside, or
+        R"(Escape times through the exits of a Shape or Shape3 (free, speed 1) or a Scene (its ensemble: inside, or
 through_exit): arrays escape_times (NaN if still inside), collisions, escaped; mean_escape_time, its se,
 exit_length, kac_mean_escape_time and the survival curve survival_t, survival_P -- `billiard escape`'s numbers.)");
 }

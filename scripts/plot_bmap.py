@@ -3,8 +3,8 @@
 
     plot_bmap.py INPUT.json OUTPUT.png|OUTPUT.pdf|OUTPUT.svg
 
-INPUT.json is the metadata `billiard bmap` writes beside its .npy: "kind" ("bmap", "section", "section3" or
-"strobe"), "npy" (the rows, relative to INPUT.json), "columns", "perimeter", "piece_starts"
+INPUT.json is the metadata `billiard bmap` writes beside its .npy: "kind" ("bmap", "section", "section3",
+"strobe" or "strobe3": its positions drawn projected on the x-y plane), "npy" (the rows, relative to INPUT.json), "columns", "perimeter", "piece_starts"
 (s at each piece's start), "loop_firsts", "shape", "force", "particles", "collisions".
 Points are coloured by particle; at most MAX_POINTS of them are drawn (every k-th row).
 """
@@ -63,7 +63,7 @@ def main():
     else:
         x, y = rows[:, col["x"]], rows[:, col["y"]]
         ax.set_aspect("equal")
-        ax.set_xlabel("x")
+        ax.set_xlabel("x" + (" (positions projected on the x-y plane)" if kind == "strobe3" else ""))
         ax.set_ylabel("y")
         what = f"stroboscopic section at drive phase {meta['strobe']:.6g}"
     ax.scatter(x, y, c=particle, s=size, cmap="tab10" if meta["particles"] <= 10 else "viridis",

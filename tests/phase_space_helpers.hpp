@@ -1,10 +1,16 @@
 // What the phase-space tests (boundary map, Lyapunov exponents) share: bundled shapes and
-// scenes by name.
+// scenes by name, and the divergence rate of two nearby orbits (an exponent without tangent
+// dynamics).
 #pragma once
 
+#include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/scene.hpp"
+#include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry/shape_file.hpp"
 
+#include <Eigen/Core>
+
+#include <cmath>
 #include <string>
 
 inline billiards::geometry::Shape bundled_shape(const std::string& name) {
@@ -16,4 +22,44 @@ inline billiards::dynamics::Scene bundled_scene(const std::string& name, std::si
   billiards::dynamics::SceneOverrides o;
   o.particles = particles;
   return billiards::dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/" + name, o);
+}
+
+/// The energy-conserving flight from s to time t_end, through the bounces before it (each
+/// restoring the orbit's own speed, as `evolve` does).
+template <class TableT, class Flight>
+typename Flight::State advance_to(const TableT& table, const Flight& flight, typename Flight::State s, double t_end) {
+  const double v2 = s.v.squaredNorm();
+  for (;;) {
+    const auto hit = billiards::dynamics::collision(table, flight, s, t_end);
+    if (!hit.found()) return flight.advance(s, t_end);
+    billiards::dynamics::bounce(flight, s, hit);
+    billiards::dynamics::restore_speed(s.v, v2);
+  }
+}
+
+/// The maximal exponent of the orbit from `a` up to t_end by Benettin et al.'s (1976) method: a
+/// second orbit delta0 apart in phase space (along `shift`, a position shift), compared with the
+/// first after every `interval` and put back at distance delta0 along their separation, with
+/// the first's speed; the mean log growth per unit time.
+template <class TableT, class Flight>
+double divergence_rate(const TableT& table, const Flight& flight, typename Flight::State a,
+                       const decltype(a.x)& shift, double t_end, double delta0 = 1e-9, double interval = 1) {
+  constexpr int D = Flight::State::dimension;
+  using Phase = Eigen::Matrix<double, 2 * D, 1>;
+  const auto phase_point = [](const auto& s) { return (Phase() << s.x, s.v).finished(); };
+  auto b = a;
+  b.x += delta0 * shift.normalized();
+  const double t0 = a.t;
+  const int steps = int((t_end - t0) / interval);
+  double sum = 0;
+  for (int k = 1; k <= steps; ++k) {
+    a = advance_to(table, flight, a, t0 + k * interval);
+    b = advance_to(table, flight, b, t0 + k * interval);
+    const Phase d = phase_point(b) - phase_point(a);
+    sum += std::log(d.norm() / delta0);
+    const Phase renormalised = phase_point(a) + d * (delta0 / d.norm());
+    b.x = renormalised.template head<D>();
+    b.v = renormalised.template tail<D>().normalized() * a.v.norm();
+  }
+  return sum / (steps * interval);
 }

@@ -180,6 +180,11 @@ TEST_CASE("billiard bmap writes the map, its CSV and its picture; bad sections a
   CHECK(r.status == 2);
   CHECK(r.output.find("billiard: error: --section 'x*y = 0': the equation is not linear") != std::string::npos);
   CHECK(!std::filesystem::exists(dir / "bad"));
+  // A magnetic field with a force: refused before any work (its search needs a time horizon).
+  r = billiard("bmap scenes/clover-magnetic-driven.yaml --particles 2 --collisions 10 --out " + (dir / "bad").string());
+  CHECK(r.status == 2);
+  CHECK(r.output.find("billiard: error: scenes/clover-magnetic-driven.yaml: billiard bmap follows particles") !=
+        std::string::npos);
   r = billiard("bmap shapes/stadium.yaml --strobe 0 --out " + (dir / "bad").string());
   CHECK(r.status == 2);
   CHECK(r.output.find("needs a periodic drive") != std::string::npos);

@@ -1,8 +1,9 @@
 // Lyapunov exponents from tangent dynamics (analysis/lyapunov.hpp) against what is known
 // without that code: the tangent map against finite differences of two trajectories (free
-// flights on every wall kind, the periodic drive), zero exponents in the integrable circle,
-// square and ellipse, the conjugate pairing of the spectrum, and the Sinai table's maximal
-// exponent from the wave-front curvature recursion written here.
+// flights on every wall kind, the periodic drive, a magnetic field), zero exponents in the
+// integrable circle (in a field too), square and ellipse, the conjugate pairing of the
+// spectrum, the Sinai table's maximal exponent from the wave-front curvature recursion written
+// here, and in a field from the divergence of two nearby orbits (phase_space_helpers.hpp).
 #include "cli_helpers.hpp"
 #include "phase_space_helpers.hpp"
 
@@ -42,7 +43,7 @@ void check_against_finite_differences(const dynamics::Table& table, const Flight
   REQUIRE(made == collisions);
   const auto next = dynamics::collision(table, flight, end);
   const double t_end = 0.5 * (end.t + next.t);
-  analysis::tangent_flight_step<2>(q, t_end - end.t);
+  analysis::tangent_flight_step(flight, q, t_end - end.t);
   const double h = 1e-7;
   for (int j = 0; j < 4; ++j) {
     auto plus = s, minus = s;
@@ -59,13 +60,35 @@ void check_against_finite_differences(const dynamics::Table& table, const Flight
   }
 }
 
-analysis::LyapunovSpectrum free_spectrum(const std::string& name, std::size_t particles, std::size_t collisions,
-                                         int threads = 2) {
+template <class Flight>
+analysis::LyapunovSpectrum spectrum(const std::string& name, const Flight& flight, std::size_t particles,
+                                    std::size_t collisions, int threads = 2) {
   const auto s = bundled_shape(name);
   const dynamics::Table table(s.region);
-  return analysis::lyapunov_spectrum(table, dynamics::FreeFlight{},
-                                     dynamics::microcanonical(table, dynamics::FreeFlight{}, 1.0, 11), particles,
+  return analysis::lyapunov_spectrum(table, flight, dynamics::microcanonical(table, flight, 1.0, 11), particles,
                                      collisions, threads);
+}
+
+analysis::LyapunovSpectrum free_spectrum(const std::string& name, std::size_t particles, std::size_t collisions,
+                                         int threads = 2) {
+  return spectrum(name, dynamics::FreeFlight{}, particles, collisions, threads);
+}
+
+/// A field that bends the flights visibly in the bundled tables (r_c = 1.25 at speed 1; Ω > 0
+/// turns clockwise) without leaving room for a cyclotron orbit inside them.
+const dynamics::MagneticFlight field{0.8};
+
+/// The spectrum's pairs: λ1 = −λ4, λ2 = −λ3 = 0 per trajectory, and det J = 1.
+void check_pairs(const analysis::LyapunovSpectrum& r) {
+  const double top = r.per_time[0].mean;
+  CHECK(top > 0.1);
+  for (std::size_t i = 0; i < r.trajectories.size(); ++i) {
+    const auto& l = r.trajectories[i].log_stretch;
+    CHECK(std::abs(l[0] + l[1] + l[2] + l[3]) < 1e-8 * std::abs(l[0]));  // det J = 1
+    CHECK(std::abs(r.exponent(i, 0) + r.exponent(i, 3)) < 0.01 * top);
+    CHECK(std::abs(r.exponent(i, 1) + r.exponent(i, 2)) < 0.01 * top);
+    CHECK(std::abs(r.exponent(i, 1)) < 0.01 * top);  // the flow's direction and the energy
+  }
 }
 
 }  // namespace
@@ -93,6 +116,19 @@ TEST_CASE("the tangent map equals finite differences under the periodic drive an
   }
 }
 
+TEST_CASE("the tangent map equals finite differences in a magnetic field, on every wall kind") {
+  // (Elliptic arcs: found by the certified scan; segments and circular arcs: closed forms.)
+  for (const char* name : {"sinai.yaml", "clover.yaml", "stadium.yaml", "sinai-ellipse.yaml"}) {
+    INFO(name);
+    const auto sh = bundled_shape(name);
+    const dynamics::Table table(sh.region);
+    const auto initial = dynamics::microcanonical(table, field, 1.0, 5);
+    for (std::size_t i = 0; i < 4; ++i) check_against_finite_differences(table, field, initial(i), 4);
+    const dynamics::MagneticFlight reversed{-field.omega_c};
+    for (std::size_t i = 4; i < 8; ++i) check_against_finite_differences(table, reversed, initial(i), 4);
+  }
+}
+
 TEST_CASE("integrable tables: the maximal exponent vanishes, decreasing with the trajectory's length") {
   const double chaotic = free_spectrum("stadium.yaml", 8, 4000).per_time[0].mean;
   for (const char* name : {"circle.yaml", "square.yaml", "ellipse.yaml"}) {
@@ -104,19 +140,45 @@ TEST_CASE("integrable tables: the maximal exponent vanishes, decreasing with the
   }
 }
 
+TEST_CASE("the circle in a magnetic field is integrable: the maximal exponent vanishes") {
+  // The canonical angular momentum about the centre is kept by the flights and the bounces.
+  const double chaotic = spectrum("stadium.yaml", field, 8, 4000).per_time[0].mean;
+  const auto short_run = spectrum("circle.yaml", field, 8, 1000), long_run = spectrum("circle.yaml", field, 8, 16000);
+  CHECK(long_run.per_time[0].mean < 0.5 * short_run.per_time[0].mean);
+  CHECK(long_run.per_time[0].mean < 0.01 * chaotic);
+}
+
+TEST_CASE("cyclotron orbits that meet no wall are trapped, left out of the exponents, not escapes") {
+  // In the unit circle with r_c = 1/4, the orbit from x circles about c = x + w0/k and stays
+  // inside exactly when |c| + r_c < 1.
+  const dynamics::MagneticFlight strong{4.0};
+  const auto sh = bundled_shape("circle.yaml");
+  const dynamics::Table table(sh.region);
+  const auto initial = dynamics::microcanonical(table, strong, 1.0, 3);
+  const auto r = analysis::lyapunov_spectrum(table, strong, initial, 40, 200, 2);
+  std::size_t inside = 0;
+  for (std::size_t i = 0; i < 40; ++i) {
+    const auto s = initial(i);
+    const geometry::Vec2 center = s.x + geometry::Vec2(s.v.y(), -s.v.x()) / strong.omega_c;
+    const bool stays = center.norm() + s.v.norm() / strong.omega_c < 1;
+    inside += stays;
+    CHECK(r.trajectories[i].trapped == stays);
+    CHECK(r.trajectories[i].collisions == (stays ? 0u : 200u));
+  }
+  CHECK(inside > 0);
+  CHECK(r.trapped() == inside);
+  CHECK(r.escapes() == 0);
+}
+
 TEST_CASE("the spectrum comes in conjugate pairs that sum to zero") {
   for (const char* name : {"stadium.yaml", "clover.yaml", "sinai-ellipse.yaml"}) {
     INFO(name);
-    const auto r = free_spectrum(name, 6, 20000);
-    const double top = r.per_time[0].mean;
-    CHECK(top > 0.1);
-    for (std::size_t i = 0; i < r.trajectories.size(); ++i) {
-      const auto& l = r.trajectories[i].log_stretch;
-      CHECK(std::abs(l[0] + l[1] + l[2] + l[3]) < 1e-8 * std::abs(l[0]));  // det J = 1
-      CHECK(std::abs(r.exponent(i, 0) + r.exponent(i, 3)) < 0.01 * top);
-      CHECK(std::abs(r.exponent(i, 1) + r.exponent(i, 2)) < 0.01 * top);
-      CHECK(std::abs(r.exponent(i, 1)) < 0.01 * top);  // the flow's direction and the energy
-    }
+    check_pairs(free_spectrum(name, 6, 20000));
+  }
+  // In a magnetic field the flow is Hamiltonian and keeps the energy: pairs and two zeros.
+  for (const char* name : {"stadium.yaml", "sinai.yaml"}) {
+    INFO(name << " in a magnetic field");
+    check_pairs(spectrum(name, field, 6, 20000));
   }
   // Under the drive the energy changes, but the flow stays Hamiltonian: pairs again.
   const auto scene = bundled_scene("clover-driven.yaml", 4);
@@ -159,6 +221,22 @@ TEST_CASE("Sinai table: the maximal exponent equals the wave-front curvature rec
   CHECK(std::abs(r.per_time[0].mean - expected.mean) < 3 * r.per_time[0].se);
 }
 
+TEST_CASE("Sinai table in a magnetic field: the maximal exponent equals two orbits' divergence rate, within 3 SE") {
+  const auto sh = bundled_shape("sinai.yaml");
+  const dynamics::Table table(sh.region);
+  const auto initial = dynamics::microcanonical(table, field, 1.0, 17);
+  const std::size_t particles = 32, collisions = 6000;
+  const auto r = analysis::lyapunov_spectrum(table, field, initial, particles, collisions, 2);
+  std::vector<double> divergence;
+  for (std::size_t i = 0; i < particles; ++i)
+    divergence.push_back(divergence_rate(table, field, initial(i), geometry::Vec2(0.6, 0.8), r.trajectories[i].time));
+  const auto expected = analysis::sample_moments(divergence);
+  INFO("tangent dynamics " << r.per_time[0].mean << " ± " << r.per_time[0].se << ", two orbits " << expected.mean
+                           << " ± " << expected.se_mean);
+  CHECK(r.per_time[0].se > 0);
+  CHECK(std::abs(r.per_time[0].mean - expected.mean) < 3 * std::hypot(r.per_time[0].se, expected.se_mean));
+}
+
 TEST_CASE("the exponents are identical for any thread count") {
   const auto one = free_spectrum("clover.yaml", 5, 2000, 1), two = free_spectrum("clover.yaml", 5, 2000, 2);
   for (std::size_t i = 0; i < 5; ++i) CHECK(one.trajectories[i].log_stretch == two.trajectories[i].log_stretch);
@@ -181,6 +259,13 @@ TEST_CASE("billiard lyapunov --json: its keys, and a scene's flight") {
   j = nlohmann::json::parse(r.output);
   CHECK(j["force"] == "periodic");
   CHECK(j["lyapunov"].get<double>() > 0);
+  r = billiard("lyapunov scenes/stadium-magnetic.yaml --particles 3 --collisions 2000 --json --quiet");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  j = nlohmann::json::parse(r.output);
+  CHECK(j["lyapunov"].get<double>() > 0);
+  CHECK(j["spectrum"][0].get<double>() == Approx(-j["spectrum"][3].get<double>()).epsilon(0.01));
+  CHECK(j["trapped"] == 0);
   r = billiard("lyapunov scenes/clover-field.yaml --particles 3 --collisions 10 --quiet");
   CHECK(r.status == 2);
   CHECK(r.output.find("billiard: error: scenes/clover-field.yaml: Lyapunov exponents are computed for") != std::string::npos);

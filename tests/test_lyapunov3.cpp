@@ -1,8 +1,10 @@
 // Lyapunov exponents of 3-D tables (analysis/lyapunov.hpp with D = 3) against what is known
-// without that code: the tangent map against finite differences, a vanishing maximal exponent
-// in the cube and the ball, the conjugate pairing of the six exponents, and the 3-D Sinai
-// table's maximal exponent from the divergence of two nearby orbits, renormalised, written here.
+// without that code: the tangent map against finite differences (free flights and helices in a
+// magnetic field), a vanishing maximal exponent in the cube and the ball, the conjugate pairing
+// of the six exponents, and the 3-D Sinai table's maximal exponent, free and in a field, from
+// the divergence of two nearby orbits, renormalised (phase_space_helpers.hpp).
 #include "cli_helpers.hpp"
+#include "phase_space_helpers.hpp"
 
 #include "billiards/analysis/lyapunov.hpp"
 #include "billiards/analysis/statistics.hpp"
@@ -29,31 +31,28 @@ Phase phase_point(const dynamics::State3& s) {
   return p;
 }
 
-/// The free flight from s to time t_end, through the bounces before it.
-dynamics::State3 advance_to(const dynamics::Table3& table, dynamics::State3 s, double t_end) {
-  const dynamics::FreeFlight3 flight;
-  const double v2 = s.v.squaredNorm();
-  for (;;) {
-    const auto hit = dynamics::collision(table, flight, s, t_end);
-    if (!hit.found()) return flight.advance(s, t_end);
-    dynamics::bounce(flight, s, hit);
-    dynamics::restore_speed(s.v, v2);
-  }
+template <class Flight>
+analysis::BasicLyapunovSpectrum<3> spectrum(const dynamics::Table3& table, const Flight& flight, std::size_t particles,
+                                            std::size_t collisions, int threads = 2) {
+  return analysis::lyapunov_spectrum(table, flight, dynamics::microcanonical(table, flight, 1.0, 11), particles,
+                                     collisions, threads);
 }
 
 analysis::BasicLyapunovSpectrum<3> free_spectrum(const dynamics::Table3& table, std::size_t particles,
                                                  std::size_t collisions, int threads = 2) {
-  return analysis::lyapunov_spectrum(table, dynamics::FreeFlight3{},
-                                     dynamics::microcanonical(table, dynamics::FreeFlight3{}, 1.0, 11), particles,
-                                     collisions, threads);
+  return spectrum(table, dynamics::FreeFlight3{}, particles, collisions, threads);
 }
 
-}  // namespace
+/// A field strong enough to bend the flights visibly within the unit cube: r_c = 1/|Ω| ≈ 1.1 at
+/// speed 1, across a direction in general position.
+const dynamics::MagneticFlight3 helix{Eigen::Vector3d(0.3, 0.6, 0.6)};
 
-TEST_CASE("3-D: the tangent map equals finite differences on planes and spheres") {
+/// The tangent map over 5 bounces in the 3-D Sinai table (to half way to the next) against
+/// central differences of perturbed trajectories, column by column.
+template <class Flight>
+void check_against_finite_differences(const Flight& flight) {
   const auto sh = shape3("sinai3.yaml");
   const dynamics::Table3 table(sh.region);
-  const dynamics::FreeFlight3 flight;
   const auto initial = dynamics::microcanonical(table, flight, 1.0, 5);
   std::size_t sphere_hits = 0;
   for (std::size_t i = 0; i < 8; ++i) {
@@ -65,20 +64,63 @@ TEST_CASE("3-D: the tangent map equals finite differences on planes and spheres"
     });
     REQUIRE(made == 5);
     const double t_end = 0.5 * (end.t + dynamics::collision(table, flight, end).t);
-    analysis::tangent_flight_step<3>(q, t_end - end.t);
+    analysis::tangent_flight_step(flight, q, t_end - end.t);
     const double h = 1e-7;
     for (int j = 0; j < 6; ++j) {
       auto plus = s, minus = s;
       (j < 3 ? plus.x[j] : plus.v[j - 3]) += h;
       (j < 3 ? minus.x[j] : minus.v[j - 3]) -= h;
       // (advance_to restores each orbit's own speed, so the velocity columns see the speed change too)
-      const Phase fd = (phase_point(advance_to(table, plus, t_end)) - phase_point(advance_to(table, minus, t_end))) / (2 * h);
+      const Phase fd = (phase_point(advance_to(table, flight, plus, t_end)) -
+                        phase_point(advance_to(table, flight, minus, t_end))) / (2 * h);
       INFO("particle " << i << ", column " << j << ": tangent " << q.col(j).transpose() << ", finite differences "
                        << fd.transpose());
       CHECK((q.col(j) - fd).norm() <= 1e-4 * (1 + fd.norm()));
     }
   }
   CHECK(sphere_hits >= 3);  // (the ball's curvature entered the maps checked)
+}
+
+/// Six exponents in conjugate pairs, the middle two zero, the volume kept.
+void check_pairs(const analysis::BasicLyapunovSpectrum<3>& r) {
+  const double top = r.per_time[0].mean;
+  CHECK(top > 0.5);
+  CHECK(r.per_time[1].mean > 0.1 * top);  // a second positive exponent: two unstable directions
+  for (std::size_t i = 0; i < r.trajectories.size(); ++i) {
+    const auto& l = r.trajectories[i].log_stretch;
+    CHECK(std::abs(l[0] + l[1] + l[2] + l[3] + l[4] + l[5]) < 1e-8 * std::abs(l[0]));  // det J = 1
+    for (int k = 0; k < 3; ++k) CHECK(std::abs(r.exponent(i, k) + r.exponent(i, 5 - k)) < 0.01 * top);
+    CHECK(std::abs(r.exponent(i, 2)) < 0.01 * top);  // the flow's direction and the energy
+  }
+}
+
+/// The maximal exponent from tangent dynamics against two nearby orbits' divergence rate
+/// (phase_space_helpers.hpp) on the same trajectories, within 3 SE.
+template <class Flight>
+void check_against_divergence(const Flight& flight, std::size_t particles, std::size_t collisions) {
+  const auto sh = shape3("sinai3.yaml");
+  const dynamics::Table3 table(sh.region);
+  const auto initial = dynamics::microcanonical(table, flight, 1.0, 17);
+  const auto r = analysis::lyapunov_spectrum(table, flight, initial, particles, collisions, 2);
+  std::vector<double> divergence;
+  for (std::size_t i = 0; i < particles; ++i)
+    divergence.push_back(
+        divergence_rate(table, flight, initial(i), Eigen::Vector3d(0.6, 0, 0.8), r.trajectories[i].time));
+  const auto expected = analysis::sample_moments(divergence);
+  INFO("tangent dynamics " << r.per_time[0].mean << " ± " << r.per_time[0].se << ", two orbits " << expected.mean
+                           << " ± " << expected.se_mean);
+  CHECK(r.per_time[0].se > 0);
+  CHECK(std::abs(r.per_time[0].mean - expected.mean) < 3 * std::hypot(r.per_time[0].se, expected.se_mean));
+}
+
+}  // namespace
+
+TEST_CASE("3-D: the tangent map equals finite differences on planes and spheres") {
+  check_against_finite_differences(dynamics::FreeFlight3{});
+}
+
+TEST_CASE("3-D: the tangent map of helices in a magnetic field equals finite differences") {
+  check_against_finite_differences(helix);
 }
 
 TEST_CASE("3-D integrable tables (cube, ball): the maximal exponent vanishes, decreasing with the length") {
@@ -94,54 +136,19 @@ TEST_CASE("3-D integrable tables (cube, ball): the maximal exponent vanishes, de
   }
 }
 
-TEST_CASE("3-D Sinai table: six exponents in conjugate pairs, two of them zero") {
+TEST_CASE("3-D Sinai table: six exponents in conjugate pairs, two of them zero; in a magnetic field too") {
   const auto sh = shape3("sinai3.yaml");
-  const auto r = free_spectrum(dynamics::Table3(sh.region), 6, 20000);
-  const double top = r.per_time[0].mean;
-  CHECK(top > 0.5);
-  CHECK(r.per_time[1].mean > 0.1 * top);  // a second positive exponent: two unstable directions
-  for (std::size_t i = 0; i < r.trajectories.size(); ++i) {
-    const auto& l = r.trajectories[i].log_stretch;
-    CHECK(std::abs(l[0] + l[1] + l[2] + l[3] + l[4] + l[5]) < 1e-8 * std::abs(l[0]));  // det J = 1
-    for (int k = 0; k < 3; ++k) CHECK(std::abs(r.exponent(i, k) + r.exponent(i, 5 - k)) < 0.01 * top);
-    CHECK(std::abs(r.exponent(i, 2)) < 0.01 * top);  // the flow's direction and the energy
-  }
+  const dynamics::Table3 table(sh.region);
+  check_pairs(free_spectrum(table, 6, 20000));
+  check_pairs(spectrum(table, helix, 6, 20000));
 }
 
 TEST_CASE("3-D Sinai table: the maximal exponent equals two nearby orbits' divergence rate, within 3 SE") {
-  // Two orbits δ0 apart in phase space, compared after every interval Δ and the second put back
-  // at distance δ0 along their separation (Benettin et al. 1976), with the first's speed.
-  const auto sh = shape3("sinai3.yaml");
-  const dynamics::Table3 table(sh.region);
-  const auto initial = dynamics::microcanonical(table, dynamics::FreeFlight3{}, 1.0, 17);
-  const std::size_t particles = 48, collisions = 6000;
-  const double delta0 = 1e-9, interval = 1.0;
-  const auto r = analysis::lyapunov_spectrum(table, dynamics::FreeFlight3{}, initial, particles, collisions, 2);
-  std::vector<double> divergence;
-  for (std::size_t i = 0; i < particles; ++i) {
-    auto a = initial(i);
-    auto b = a;
-    b.x += delta0 * Eigen::Vector3d(0.6, 0, 0.8);
-    double sum = 0;
-    const double t_end = r.trajectories[i].time;
-    const int steps = int(t_end / interval);
-    for (int k = 1; k <= steps; ++k) {
-      a = advance_to(table, a, k * interval);
-      b = advance_to(table, b, k * interval);
-      const Phase d = phase_point(b) - phase_point(a);
-      sum += std::log(d.norm() / delta0);
-      const Phase renormalised = phase_point(a) + d * (delta0 / d.norm());
-      b.x = renormalised.head<3>();
-      b.v = renormalised.tail<3>().normalized() * a.v.norm();
-    }
-    divergence.push_back(sum / (steps * interval));
-  }
-  const auto expected = analysis::sample_moments(divergence);
-  INFO("tangent dynamics " << r.per_time[0].mean << " ± " << r.per_time[0].se << ", two orbits " << expected.mean
-                           << " ± " << expected.se_mean);
-  CHECK(r.per_time[0].se > 0);
-  CHECK(std::abs(r.per_time[0].mean - expected.mean) <
-        3 * std::hypot(r.per_time[0].se, expected.se_mean));
+  check_against_divergence(dynamics::FreeFlight3{}, 48, 6000);
+}
+
+TEST_CASE("3-D Sinai table in a magnetic field: the maximal exponent equals two orbits' divergence rate") {
+  check_against_divergence(helix, 32, 6000);
 }
 
 TEST_CASE("billiard lyapunov on a 3-D shape: six exponents, the same for 1 and 2 threads") {
@@ -160,4 +167,10 @@ TEST_CASE("billiard lyapunov on a 3-D shape: six exponents, the same for 1 and 2
   INFO(driven.output);
   REQUIRE(driven.status == 0);
   CHECK(nlohmann::json::parse(driven.output)["spectrum"].size() == 6);
+  const auto magnetic = billiard("lyapunov scenes/sinai3-magnetic.yaml --particles 3 --collisions 1000 --json --quiet");
+  INFO(magnetic.output);
+  REQUIRE(magnetic.status == 0);
+  const auto m = nlohmann::json::parse(magnetic.output);
+  REQUIRE(m["spectrum"].size() == 6);
+  CHECK(m["spectrum"][0].get<double>() == Approx(-m["spectrum"][5].get<double>()).epsilon(0.01));
 }

@@ -1,7 +1,9 @@
 // Poincaré sections of curved flights and of 3-D tables (analysis/boundary_map.hpp's
 // line_section): the crossings of a parabola with a line against the quadratic's closed-form
 // roots; the crossings of driven flights (2-D and 3-D) on the section and as many as a fine
-// brute-force scan of each flight finds; `billiard bmap --section` in 3-D.
+// brute-force scan of each flight finds; the stroboscopic section in 3-D against states found
+// by a collision search with the strobe time as its horizon; `billiard bmap --section` and
+// `--strobe` in 3-D.
 #include "cli_helpers.hpp"
 #include "phase_space_helpers.hpp"
 
@@ -125,6 +127,32 @@ TEST_CASE("driven flights' crossings lie on the section, as many as a fine scan 
   }
 }
 
+TEST_CASE("3-D stroboscopic section: the states at the drive phase asked for, as a search up to each time finds") {
+  const auto scene = bundled_scene("sinai3-driven.yaml", 3);
+  const dynamics::Table3 table(scene.shape<3>().region);
+  const dynamics::PeriodicDriveFlight3 flight{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
+  const auto initial = dynamics::initial_states(scene, table, flight);
+  const double phase = 1.0;
+  const auto r = analysis::stroboscopic_section(table, flight, phase, initial, 3, 100, 2, scene.mass);
+  REQUIRE(r.columns == 10);
+  REQUIRE(r.row_count() > 6);
+  std::size_t particle = r.row_count();  // (none yet)
+  auto s = initial(0);
+  for (std::size_t i = 0; i < r.row_count(); ++i) {
+    const double t = at(r, i, 8);
+    CHECK(t == Approx((phase - flight.phase0 + 2 * geometry::pi * at(r, i, 1)) / flight.omega).margin(1e-12));
+    // Independently: the particle's collisions up to t, searched with t as the horizon.
+    if (std::size_t(at(r, i, 0)) != particle) particle = std::size_t(at(r, i, 0)), s = initial(particle);
+    for (auto hit = dynamics::collision(table, flight, s, t); hit.found(); hit = dynamics::collision(table, flight, s, t))
+      dynamics::bounce(flight, s, hit);
+    const auto there = flight.advance(s, t);
+    const Eigen::Vector3d x(at(r, i, 2), at(r, i, 3), at(r, i, 4)), v(at(r, i, 5), at(r, i, 6), at(r, i, 7));
+    CHECK((x - there.x).norm() < 1e-9);
+    CHECK((v - there.v).norm() < 1e-9 * (1 + v.norm()));
+    CHECK(at(r, i, 9) == Approx(0.5 * scene.mass * v.squaredNorm()));
+  }
+}
+
 TEST_CASE("billiard bmap in 3-D: a plane section, the same for 1 and 2 threads; no boundary map without one") {
   const auto dir = scratch_root() / "bmap3";
   const std::string cmd = "bmap shapes/3d/sinai3.yaml --section \"z = 0\" --particles 3 --collisions 400 --quiet ";
@@ -141,4 +169,10 @@ TEST_CASE("billiard bmap in 3-D: a plane section, the same for 1 and 2 threads; 
   CHECK(r.output.find("are 2-D only: for a 3-D table give a plane section, such as --section \"z = 0\"") !=
         std::string::npos);
   CHECK(!std::filesystem::exists(dir / "bad"));
+  const auto strobe = billiard("bmap scenes/sinai3-driven.yaml --strobe pi/2 --particles 2 --collisions 300 --quiet --out " +
+                               (dir / "strobe").string());
+  INFO(strobe.output);
+  REQUIRE(strobe.status == 0);
+  CHECK(read_file(dir / "strobe" / "strobe3.csv").rfind("particle,k,x,y,z,vx,vy,vz,t,energy\n", 0) == 0);
+  CHECK(std::filesystem::exists(dir / "strobe" / "strobe3.png"));
 }

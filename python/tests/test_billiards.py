@@ -291,7 +291,10 @@ def test_phase_space_functions_give_the_programs_numbers(source, tmp_path):
     cli = billiard_json("lyapunov", "shapes/clover.yaml", "--particles", 3, "--collisions", 2000, "--quiet")
     assert lyap["lyapunov"] == cli["lyapunov"] and lyap["lyapunov_se"] == cli["lyapunov_se"]
     assert np.allclose(lyap["per_trajectory"].sum(axis=1), 0, atol=1e-9)
-    assert bk.chaos(shape, orbits=3, collisions=5000)["ergodic"] is True
+    # (50 000 collisions an orbit, as the CLI's default: its distance to uniform, ~0.03, stays clear of 0.1)
+    assert bk.chaos(shape, orbits=3, collisions=50000)["ergodic"] is True
+    with pytest.raises(ValueError, match="needs a time horizon"):  # (a magnetic field with a force)
+        bk.boundary_map(bk.load_scene(source / "scenes" / "clover-magnetic-driven.yaml"))
 
 
 def test_escape_gives_the_programs_numbers_and_kacs_lemma(source, tmp_path):

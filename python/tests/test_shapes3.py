@@ -221,3 +221,37 @@ def test_free_trajectory_in_a_shape3(source, name):
     assert again["positions"].tobytes() == traj["positions"].tobytes()
     other = bk.trajectory(shape, collisions=200, seed=5, particle=1, speed=3)
     assert not np.array_equal(other["positions"][0], traj["positions"][0])
+
+
+# --- phase space ---------------------------------------------------------------------------
+
+def test_phase_space_functions_in_3d_give_the_programs_numbers(source, tmp_path):
+    """bk.lyapunov, bk.chaos and bk.escape take a Shape3 or a 3-D Scene as `billiard lyapunov`,
+    `chaos` and `escape` take the files; bk.boundary_map refuses them as `bmap` without --section."""
+    path = shape3_path(source, "sinai3")
+    shape = bk.load_shape(path)
+    lyap = bk.lyapunov(shape, particles=3, collisions=2000)
+    cli = billiard_json("lyapunov", path, "--particles", 3, "--collisions", 2000, "--quiet")
+    assert lyap["dimension"] == 3 and lyap["per_trajectory"].shape == (3, 6)
+    assert list(lyap["spectrum"]) == cli["spectrum"] and lyap["lyapunov_se"] == cli["lyapunov_se"]
+    assert np.allclose(lyap["per_trajectory"].sum(axis=1), 0, atol=1e-9)  # (the volume is kept)
+    magnetic = source / "scenes" / "sinai3-magnetic.yaml"
+    lyap = bk.lyapunov(bk.load_scene(magnetic), particles=3, collisions=1000)
+    cli = billiard_json("lyapunov", magnetic, "--particles", 3, "--collisions", 1000, "--quiet")
+    assert list(lyap["spectrum"]) == cli["spectrum"] and lyap["trapped"] == cli["trapped"] == 0
+    cube = shape3_path(source, "cube")
+    verdict = bk.chaos(bk.load_shape(cube), orbits=3, collisions=4000)
+    cli = billiard_json("chaos", cube, "--particles", 3, "--collisions", 4000, "--quiet")
+    assert verdict["ergodic"] is False and cli["ergodic"] is False
+    assert verdict["lyapunov"] == cli["lyapunov"] and verdict["pooled_distance"] == cli["pooled_distance"]
+    open_path = tmp_path / "sinai3-open.yaml"
+    open_path.write_text(path.read_text() + "exits:\n  - disc: {center: [L/2, 0.1, -0.1], radius: 0.2}\n")
+    r = bk.escape(bk.load_shape(open_path), particles=300, seed=3, entering=True)
+    cli = billiard_json("escape", open_path, "--particles", 300, "--seed", 3, "--entering", "--quiet",
+                        "--out", tmp_path / "escape")
+    assert r["dimension"] == 3 and r["exit_length"] == pytest.approx(math.pi * 0.04, rel=1e-12)
+    assert r["mean_escape_time"] == cli["mean_escape_time"] and r["kac_mean_escape_time"] == cli["kac_mean_escape_time"]
+    table = np.loadtxt(tmp_path / "escape" / "escape.csv", delimiter=",", skiprows=1)
+    assert np.array_equal(r["escape_times"], table[:, 1]) and np.array_equal(r["collisions"], table[:, 2])
+    with pytest.raises(ValueError, match="3-D table has no boundary map"):
+        bk.boundary_map(shape)

@@ -103,6 +103,9 @@ inline constexpr std::array<const char*, 8> section3_columns{"particle", "crossi
 /// Rows of a stroboscopic section: particle, period k (t = (PHASE − phase0 + 2πk)/ω), x, y, vx,
 /// vy, t, energy.
 inline constexpr std::array<const char*, 8> strobe_columns{"particle", "k", "x", "y", "vx", "vy", "t", "energy"};
+/// The same in 3-D: particle, k, x, y, z, vx, vy, vz, t, energy.
+inline constexpr std::array<const char*, 10> strobe3_columns{"particle", "k",  "x", "y",      "z",
+                                                             "vx",       "vy", "vz", "t", "energy"};
 
 /// What an ensemble's sections leave: the rows of every particle in index order, and which
 /// particles met no wall before their last collision (escapes: an error of the table).
@@ -266,25 +269,29 @@ concept driven_flight = requires(const Flight& f) {
   { f.phase0 } -> std::convertible_to<double>;
 };
 
-/// The stroboscopic section of a driven flight at drive phase `phase` (strobe_columns): the
-/// state at every time t ≥ 0 with ω t + phase0 = phase (mod 2π), over `collisions` bounces.
+/// The stroboscopic section of a driven flight at drive phase `phase` (strobe_columns, in 3-D
+/// strobe3_columns): the state at every time t ≥ 0 with ω t + phase0 = phase (mod 2π), over
+/// `collisions` bounces.
 template <driven_flight Flight, class Initial>
-SectionRows stroboscopic_section(const dynamics::Table& table, const Flight& flight, double phase,
+SectionRows stroboscopic_section(const dynamics::TableFor<Flight>& table, const Flight& flight, double phase,
                                  const Initial& initial, std::size_t particles, std::size_t collisions, int threads,
                                  double mass = 1, const std::function<void(std::size_t)>& progress = {}) {
   const double period = 2 * geometry::pi / flight.omega;
   // The first strobe time ≥ 0: (phase − phase0)/ω reduced into [0, period).
   const double first = std::fmod(std::fmod((phase - flight.phase0) / flight.omega, period) + period, period);
+  constexpr bool in_3d = dynamics::is_3d<Flight>;
   return detail::collect(
-      table, flight, initial, particles, collisions, threads, strobe_columns.size(),
+      table, flight, initial, particles, collisions, threads, in_3d ? strobe3_columns.size() : strobe_columns.size(),
       [&](std::size_t i, const auto& hit, const auto& before, const auto&, std::vector<double>& rows) {
         for (double k = std::ceil((before.t - first) / period);; ++k) {
           const double t = first + k * period;
           if (t < before.t) continue;
           if (t >= hit.t) break;
           const auto at = flight.advance(before, t);
-          rows.insert(rows.end(), {double(i), k, at.x.x(), at.x.y(), at.v.x(), at.v.y(), t,
-                                   dynamics::energy_of(flight, at, mass)});
+          rows.insert(rows.end(), {double(i), k});
+          rows.insert(rows.end(), at.x.data(), at.x.data() + at.x.size());
+          rows.insert(rows.end(), at.v.data(), at.v.data() + at.v.size());
+          rows.insert(rows.end(), {t, dynamics::energy_of(flight, at, mass)});
         }
       },
       progress);
