@@ -72,8 +72,8 @@ int main(int argc, char** argv) {
   compare("clover (driven)", table, &coordinates, drive, dynamics::initial_states(scene, table, drive)(0),
           collisions / 10);
   const auto stadium = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/stadium-magnetic.yaml");
-  const dynamics::Table stadium_table(stadium.shape.region);
-  const analysis::BoundaryCoordinates stadium_coordinates(stadium.shape.region);
+  const dynamics::Table stadium_table(stadium.shape<2>().region);
+  const analysis::BoundaryCoordinates stadium_coordinates(stadium.shape<2>().region);
   const dynamics::MagneticFlight field{stadium.cyclotron_frequency()};
   compare("stadium (magnetic)", stadium_table, &stadium_coordinates, field,
           dynamics::initial_states(stadium, stadium_table, field)(0), collisions);
@@ -90,7 +90,7 @@ int main(int argc, char** argv) {
   compare<dynamics::PeriodicDriveFlight3, void>("sinai3 3-D (driven)", table3, nullptr, drive3,
                                                 dynamics::initial_states(scene3, table3, drive3)(0), collisions / 10);
   const auto magnetic3 = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/sinai3-magnetic.yaml");
-  const dynamics::Table3 magnetic_table3(magnetic3.shape3.region);
+  const dynamics::Table3 magnetic_table3(magnetic3.shape<3>().region);
   const dynamics::MagneticFlight3 helix{magnetic3.cyclotron_vector()};
   compare<dynamics::MagneticFlight3, void>("sinai3 3-D (magnetic)", magnetic_table3, nullptr, helix,
                                            dynamics::initial_states(magnetic3, magnetic_table3, helix)(0),

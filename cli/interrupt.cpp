@@ -40,8 +40,10 @@ sigset_t interrupt_signals() {
   Pending& p = pending();
   p.lock.lock();  // held until _exit: no output is committed from now on
   for (const auto& path : p.unfinished) {
+    // Another thread may still be adding a file to a temporary directory (a trajectory's next
+    // chunk), which makes one remove_all fail as "not empty": try again until it is gone.
     std::error_code ignored;
-    fs::remove_all(path, ignored);
+    for (int attempt = 0; attempt < 1000 && fs::exists(path, ignored); ++attempt) fs::remove_all(path, ignored);
   }
   fmt::print(stderr, "\nbilliard: interrupted ({}){}{}\n", signal == SIGINT ? "Ctrl-C" : "SIGTERM",
              p.note.empty() ? "" : "; ", p.note);

@@ -70,9 +70,19 @@ void OutputDir::write_json(const std::string& name, const nlohmann::json& j) con
 
 void OutputDir::write_npy(const std::string& name, const std::vector<double>& data, std::size_t rows,
                           std::size_t cols) const {
+  write_npy_bytes(name, "<f8", reinterpret_cast<const char*>(data.data()), data.size() * sizeof(double), rows, cols);
+}
+
+void OutputDir::write_npy(const std::string& name, const std::vector<float>& data, std::size_t rows,
+                          std::size_t cols) const {
+  write_npy_bytes(name, "<f4", reinterpret_cast<const char*>(data.data()), data.size() * sizeof(float), rows, cols);
+}
+
+void OutputDir::write_npy_bytes(const std::string& name, const char* descr, const char* bytes, std::size_t size,
+                                std::size_t rows, std::size_t cols) const {
   // Format 1.0: magic, version, little-endian header length, a Python dict padded to 64 bytes.
   std::string header =
-      fmt::format("{{'descr': '<f8', 'fortran_order': False, 'shape': ({}, {}), }}", rows, cols);
+      fmt::format("{{'descr': '{}', 'fortran_order': False, 'shape': ({}, {}), }}", descr, rows, cols);
   const std::size_t total = 10 + header.size() + 1;
   header += std::string((64 - total % 64) % 64, ' ') + "\n";
   std::ofstream out(path(name), std::ios::binary);
@@ -80,7 +90,7 @@ void OutputDir::write_npy(const std::string& name, const std::vector<double>& da
   out.write("\x93NUMPY\x01\x00", 8);
   out.put(char(len & 0xff)).put(char(len >> 8));
   out << header;
-  out.write(reinterpret_cast<const char*>(data.data()), std::streamsize(data.size() * sizeof(double)));
+  out.write(bytes, std::streamsize(size));
   if (!out) throw std::runtime_error("cannot write " + path(name).string());
 }
 

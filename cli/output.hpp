@@ -37,10 +37,16 @@ class OutputDir {
   /// A float64 matrix (rows × cols, row-major) in numpy's .npy format.
   void write_npy(const std::string& name, const std::vector<double>& data, std::size_t rows,
                  std::size_t cols) const;
+  /// The same in float32.
+  void write_npy(const std::string& name, const std::vector<float>& data, std::size_t rows, std::size_t cols) const;
   /// Replaces the final directory with the temporary one.
   void commit();
 
  private:
+  /// The .npy file of `bytes`, rows × cols values of numpy's type `descr` ('<f8', '<f4').
+  void write_npy_bytes(const std::string& name, const char* descr, const char* bytes, std::size_t size,
+                       std::size_t rows, std::size_t cols) const;
+
   std::filesystem::path final_, tmp_;
   Unfinished unfinished_;
   bool committed_ = false;

@@ -167,10 +167,11 @@ EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& 
 nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coefficients>& prediction,
                          const EnsembleResult& r, double seconds, const RunArgs& args) {
   const std::size_t m = scene.record_times.size();
+  const auto by_time = energies_by_time(r, m);
   nlohmann::json per_time = nlohmann::json::array();
   for (std::size_t k = 0; k < m; ++k) {
     const double t = scene.record_times[k];
-    nlohmann::json s = delta_stats(r.energy_changes(k, m));
+    nlohmann::json s = delta_stats(energy_changes(by_time, k));
     s["t"] = t;
     if (prediction) {
       s["g1_t"] = prediction->g1 * t;
@@ -264,6 +265,9 @@ void add_run_options(CLI::App* cmd, RunArgs& args) {
   cmd->add_flag("--verify", args.verify, "also test the midpoint of every flight against the region");
   cmd->add_flag("--quiet", args.quiet, "no progress bar");
   cmd->add_flag("!--no-csv", args.csv, "write energies.npy only (energies.csv is ~0.4 kB per particle)");
+  cmd->add_option("--npy", args.npy,
+                  "energies.npy as float64 (default), float32 (half the size, 7 significant digits) or none")
+      ->check(CLI::IsMember({"float64", "float32", "none"}));
   cmd->add_option("--max-chunks", args.max_chunks,
                   "run at most K new chunks of particles, then stop; the same command resumes")
       ->transform(whole_number(1, 1e12));
@@ -274,6 +278,22 @@ dynamics::Scene load_scene(const RunArgs& args) {
   auto overrides = args.overrides;
   overrides.set = parse_overrides(args.set);
   return dynamics::load_scene(args.scene, overrides);
+}
+
+std::vector<std::vector<double>> energies_by_time(const EnsembleResult& r, std::size_t m) {
+  std::vector<std::vector<double>> E(m);
+  const std::size_t kept = r.logs.size() - r.escapes();
+  for (auto& column : E) column.reserve(kept);
+  for (std::size_t i = 0; i < r.logs.size(); ++i)
+    if (!r.logs[i].escaped)
+      for (std::size_t k = 0; k < m; ++k) E[k].push_back(r.energies[i * m + k]);
+  return E;
+}
+
+std::vector<double> energy_changes(const std::vector<std::vector<double>>& by_time, std::size_t k) {
+  std::vector<double> dE(by_time[k].size());
+  for (std::size_t i = 0; i < dE.size(); ++i) dE[i] = by_time[k][i] - by_time[0][i];
+  return dE;
 }
 
 std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_in) {
@@ -300,7 +320,10 @@ void write_run_files(const OutputDir& out, const RunOutcome& run, const RunArgs&
   const auto& scene = run.scene;
   if (args.csv)
     out.write_stream("energies.csv", [&](std::ostream& os) { write_energies_csv(os, scene, run.result); });
-  out.write_npy("energies.npy", run.result.energies, scene.particles, scene.record_times.size());
+  const std::size_t rows = scene.particles, cols = scene.record_times.size();
+  if (args.npy == "float64") out.write_npy("energies.npy", run.result.energies, rows, cols);
+  if (args.npy == "float32")
+    out.write_npy("energies.npy", std::vector<float>(run.result.energies.begin(), run.result.energies.end()), rows, cols);
   out.write_json("summary.json", run.summary);
   if (run.prediction && run.prediction->closed_form)
     out.write_text("fokker-planck.csv", fokker_planck_table(scene, *run.prediction, run.result));

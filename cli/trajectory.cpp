@@ -131,6 +131,10 @@ dynamics::FollowResult write_rows(const dynamics::Scene& scene, const Flight& fl
 
 void run_trajectory(const TrajectoryArgs& args) {
   const auto scene = scene_of(args);
+  // Such a flight's collision search runs to a horizon: under a drive an orbit may circle
+  // away from every wall for ever.
+  if (!args.time && scene.magnetic() && scene.force.kind != dynamics::Force::Kind::none)
+    throw InputError(scene.file, 0, "a magnetic field with a force is followed to a time: give --time");
   const dynamics::FollowLimits limits{
       .collisions = args.collisions.value_or(args.time ? std::numeric_limits<std::size_t>::max() : 100),
       .t_end = args.time.value_or(dynamics::never)};

@@ -427,6 +427,8 @@ TraceOptions trace_options(std::size_t collisions, double dt, double time, doubl
 py::dict scene_trajectory(const Scene& scene, std::size_t collisions, std::size_t particle, double dt, double time,
                           py::object on_chunk, std::size_t chunk, py::object progress) {
   if (particle >= scene.particles) throw py::index_error("particle index beyond the scene's particles");
+  if (!std::isfinite(time) && scene.magnetic() && scene.force.kind != dynamics::Force::Kind::none)
+    throw py::value_error("a magnetic field with a force is followed to a time: give time=");
   const auto opt = trace_options(collisions, dt, time, scene.mass, std::move(on_chunk), chunk, std::move(progress));
   return dynamics::with_flight(scene, [&](const auto& flight) {
     const auto table = dynamics::table_of<std::decay_t<decltype(flight)>>(scene);

@@ -4,6 +4,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -22,6 +23,19 @@ std::vector<double> exponential_sample(std::mt19937_64& rng, std::size_t n, doub
   std::vector<double> x(n);
   for (double& v : x) v = dist(rng);
   return x;
+}
+
+/// The Kolmogorov–Smirnov distance by its definition: a sweep over the sorted sample with F at
+/// every value (what ks_distance computes without most of those evaluations).
+double ks_by_sweep(std::vector<double> x, const std::function<double(double)>& cdf) {
+  std::sort(x.begin(), x.end());
+  const double n = double(x.size());
+  double d = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double F = cdf(x[i]);
+    d = std::max({d, F - double(i) / n, double(i + 1) / n - F});
+  }
+  return d;
 }
 
 }  // namespace
@@ -104,6 +118,40 @@ TEST_CASE("Kolmogorov-Smirnov under the null: p-values uniform; a 5% wrong rate 
   CHECK(std::abs(below_50 / double(samples) - 0.5) < 0.05);  // binomial sd 0.016
   const auto big = exponential_sample(rng, 100000, 1.05);
   CHECK(analysis::ks_p_value(analysis::ks_distance(big, cdf), big.size()) < 1e-10);
+}
+
+TEST_CASE("Kolmogorov-Smirnov distance: the sweep over every sorted value to the bit, with ~1% of its CDF calls") {
+  std::mt19937_64 rng(7);
+  std::size_t calls = 0;
+  const std::function<double(double)> exponential = [&calls](double E) {
+    ++calls;
+    return E > 0 ? -std::expm1(-E) : 0.0;
+  };
+  const std::function<double(double)> normal = [](double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); };
+  auto check = [&](const std::vector<double>& x, const std::function<double(double)>& cdf) {
+    INFO("n = " << x.size());
+    CHECK(analysis::ks_distance(x, cdf) == ks_by_sweep(x, cdf));
+  };
+  // The null, a wrong rate, a spike of equal values (particles that met no wall keep E0),
+  // values of both signs, and samples too small to bucket.
+  for (std::size_t n : {1, 2, 3, 17, 1000, 100000}) check(exponential_sample(rng, n), exponential);
+  check(exponential_sample(rng, 50000, 1.02), exponential);
+  auto spiked = exponential_sample(rng, 40000);
+  for (std::size_t i = 0; i < spiked.size(); i += 3) spiked[i] = 0.5;
+  check(spiked, exponential);
+  std::normal_distribution<double> gauss;
+  std::vector<double> mixed(30000);
+  for (double& v : mixed) v = gauss(rng);
+  check(mixed, normal);
+  std::vector<double> repeated(5000);
+  for (std::size_t i = 0; i < repeated.size(); ++i) repeated[i] = double(i % 7);  // seven values, ties only
+  check(repeated, exponential);
+  // The bounds spare almost every evaluation (the sweep makes one per value).
+  const auto big = exponential_sample(rng, 200000);
+  calls = 0;
+  analysis::ks_distance(big, exponential);
+  CHECK(calls < big.size() / 20);
+  CHECK_THROWS(analysis::ks_distance(std::vector<double>{1, NAN, 2}, exponential));
 }
 
 TEST_CASE("binomial mean absolute deviation: De Moivre's closed form against the direct sum") {

@@ -159,9 +159,11 @@ TEST_CASE("plot: the format follows the extension; long trajectories draw; no tr
 
 namespace {
 
-/// Starts `billiard ARGS` in the background, sends `signal` after `delay`, and returns the exit
+/// Starts `billiard ARGS` in the background, sends `signal` `delay` after the file `started`
+/// exists (the run is under way then, on a fast machine or a slow one), and returns the exit
 /// status and the seconds from the signal to the exit.
-std::pair<int, double> interrupt(const std::string& args, int signal, std::chrono::milliseconds delay) {
+std::pair<int, double> interrupt(const std::string& args, const fs::path& started, int signal,
+                                 std::chrono::milliseconds delay) {
   const pid_t pid = fork();
   if (pid == 0) {
     const int null = ::open("/dev/null", O_WRONLY);
@@ -170,6 +172,8 @@ std::pair<int, double> interrupt(const std::string& args, int signal, std::chron
     execl("/bin/sh", "sh", "-c", ("cd " BILLIARDS_SOURCE_DIR " && exec " BILLIARDS_BINARY " " + args).c_str(), nullptr);
     _exit(127);
   }
+  for (int waited = 0; !fs::exists(started) && waited < 60000; waited += 10)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   std::this_thread::sleep_for(delay);
   kill(pid, signal);
   const auto sent = std::chrono::steady_clock::now();
@@ -184,15 +188,16 @@ std::pair<int, double> interrupt(const std::string& args, int signal, std::chron
 TEST_CASE("Ctrl-C and SIGTERM stop a run within a second, leaving only its checkpoint, which resumes") {
   const auto dir = scratch("interrupt");
   const auto out = dir / "out";
-  // ~10 s of work: 4e5 particles to t = 100.
-  const std::string cmd = "run scenes/clover-driven.yaml --particles 400000 --time 100 --record 50 --threads 2 --quiet "
+  // 3e7 collisions (~3 s on two AVX-512 cores); each signal comes 0.7 s into a run.
+  const std::string cmd = "run scenes/clover-driven.yaml --particles 400000 --time 200 --record 50 --threads 2 --quiet "
                           "--no-csv --out " + out.string();
-  const auto [status, seconds] = interrupt(cmd, SIGINT, std::chrono::milliseconds(2500));
+  const auto checkpoint = out.string() + ".partial/fingerprint.json";
+  const auto [status, seconds] = interrupt(cmd, checkpoint, SIGINT, std::chrono::milliseconds(700));
   CHECK(status == 130);
   CHECK(seconds < 1);
   CHECK_FALSE(fs::exists(out));
-  CHECK(fs::exists(out.string() + ".partial/fingerprint.json"));
-  const auto [term_status, term_seconds] = interrupt(cmd, SIGTERM, std::chrono::milliseconds(1500));
+  CHECK(fs::exists(checkpoint));
+  const auto [term_status, term_seconds] = interrupt(cmd, checkpoint, SIGTERM, std::chrono::milliseconds(700));
   CHECK(term_status == 143);
   CHECK(term_seconds < 1);
   CHECK_FALSE(fs::exists(out));

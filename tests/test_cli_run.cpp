@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace fs = std::filesystem;
 
@@ -28,6 +29,37 @@ TEST_CASE("driven scene: 1 thread and 2 threads give byte-identical energies") {
   const auto a = read_file(dir / "one" / "energies.npy");
   CHECK(a.size() == 128 + 2000 * 6 * 8);
   CHECK(a == read_file(dir / "two" / "energies.npy"));
+}
+
+TEST_CASE("--npy float32 halves energies.npy, each energy the double's rounding; --npy none leaves it out") {
+  const auto dir = scratch("npy-types");
+  const std::string common = "run scenes/clover-driven.yaml --particles 1500 --time 5 --quiet --no-csv --out ";
+  REQUIRE(billiard(common + (dir / "f8").string()).status == 0);
+  REQUIRE(billiard(common + (dir / "f4").string() + " --npy float32").status == 0);
+  REQUIRE(billiard(common + (dir / "none").string() + " --npy none").status == 0);
+  const std::size_t n = 1500 * 6;
+  const auto f8 = read_npy(dir / "f8" / "energies.npy");
+  const auto f4 = read_file(dir / "f4" / "energies.npy");
+  REQUIRE(f8.size() == n);
+  REQUIRE(f4.size() == 128 + n * sizeof(float));
+  CHECK(f4.find("'descr': '<f4'") != std::string::npos);
+  CHECK(f4.find("'shape': (1500, 6)") != std::string::npos);
+  std::vector<float> E(n);
+  std::memcpy(E.data(), f4.data() + 128, n * sizeof(float));
+  for (std::size_t i = 0; i < n; ++i) {
+    INFO("entry " << i << ": " << f8[i]);
+    REQUIRE(E[i] == static_cast<float>(f8[i]));                                       // round to nearest
+    REQUIRE(std::abs(double(E[i]) - f8[i]) <= std::ldexp(std::abs(f8[i]), -24));  // half an ulp of 24 bits
+  }
+  CHECK_FALSE(fs::exists(dir / "none" / "energies.npy"));
+  CHECK(fs::exists(dir / "none" / "summary.json"));
+  // The statistics come from the doubles whatever is written.
+  const auto a = read_json(dir / "f8" / "summary.json"), b = read_json(dir / "none" / "summary.json");
+  CHECK(a["var_dE"] == b["var_dE"]);
+  CHECK(a["per_time"] == b["per_time"]);
+  const auto bad = billiard(common + (dir / "bad").string() + " --npy float16");
+  CHECK(bad.status != 0);
+  CHECK_FALSE(fs::exists(dir / "bad"));
 }
 
 TEST_CASE("a run resumed from its checkpoint equals an uninterrupted run") {

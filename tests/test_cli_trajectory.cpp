@@ -196,6 +196,12 @@ TEST_CASE("trajectory refuses bad input with exit 2 and writes nothing") {
   refused("shapes/no-such-shape.yaml", "no-such-shape.yaml");
   refused("shapes/circle.yaml --dt 0", "--dt: must be a positive finite number");
   refused("shapes/circle.yaml --time inf", "--time");
+  refused("scenes/clover-magnetic-driven.yaml --collisions 50", "clover-magnetic-driven.yaml: a magnetic field with a force is followed to a time: give --time");
+  const auto r = billiard("trajectory scenes/clover-magnetic-driven.yaml --time 2 --quiet --out " + out.string());
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK(fs::exists(out / "trajectory.json"));
+  fs::remove_all(out);
 }
 
 TEST_CASE("Ctrl-C stops a trajectory within a second and leaves nothing") {

@@ -113,3 +113,18 @@ TEST_CASE("a particle's generator draws std::mt19937_64's sequence, word for wor
   }
   CHECK(mismatches == 0);
 }
+
+TEST_CASE("an exception thrown inside the parallel run is rethrown after it: the lowest particle's, for any thread count") {
+  const dynamics::Table table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/clover.yaml").region);
+  dynamics::RunOptions opt;
+  opt.record_times = {0, 100};
+  const dynamics::FreeFlight flight;
+  const auto sampled = dynamics::microcanonical(table, flight, 1.0, 7);
+  // Particles 9 and 30 fail; 9's error is the one reported, whichever thread meets which first.
+  const auto initial = [&](std::size_t i) {
+    if (i == 9 || i == 30) throw std::runtime_error("particle " + std::to_string(i) + " cannot start");
+    return sampled(i);
+  };
+  for (const int threads : {1, 2})
+    CHECK_THROWS_WITH(dynamics::run_ensemble(table, flight, initial, opt, 64, threads), "particle 9 cannot start");
+}

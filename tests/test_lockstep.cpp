@@ -57,7 +57,8 @@ bool same_hit(const dynamics::FlightHit<PeriodicDriveFlight>& a, const dynamics:
 }
 
 // States the ensembles meet: fresh microcanonical starts, and states just after bounces (on a
-// wall, some after chattering re-collisions at low ω) along trajectories of several particles.
+// wall, some after chattering re-collisions at low ω) along trajectories of several particles,
+// each flight on its own clock as in the ensembles.
 std::vector<DrivenState> states_along_trajectories(const dynamics::Table& table, const PeriodicDriveFlight& flight,
                                                    int particles, int bounces) {
   std::vector<DrivenState> states;
@@ -65,10 +66,12 @@ std::vector<DrivenState> states_along_trajectories(const dynamics::Table& table,
     dynamics::ParticleRng rng(97, std::uint64_t(p));
     DrivenState s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
     states.push_back(s);
+    dynamics::Clock clock;
     for (int k = 0; k < bounces; ++k) {
       const auto hit = dynamics::collision(table, flight, s);
       REQUIRE(hit.found());
       dynamics::bounce(flight, s, hit);
+      dynamics::restart_clock(flight, s, clock);
       states.push_back(s);
     }
   }
@@ -132,7 +135,11 @@ TEST_CASE("lock step: each batch's hits are the scalar search's, bit for bit") {
         CHECK(found > compared / 2);        // most flights end on a wall...
         CHECK(found < compared);            // ...and some at their short horizon
         CHECK(false_certificates == 0);
-        CHECK(certified >= 0.75 * certain);  // (lanes handed back to the scalar search are not)
+        // At least half the midpoints the table's test is certain of are certified in the lanes
+        // too (lanes handed back to the scalar search are not); the share depends on the sample
+        // of trajectories (about two thirds in the clover at 4π, the lowest seen; the circle and
+        // the annulus at 4π have no such midpoint).
+        CHECK(2 * certified >= certain);
       }
     }
 }
@@ -189,5 +196,21 @@ TEST_CASE("lock step: ensembles equal simulate particle by particle, for 1 and 2
         }
         CHECK(collisions > 20 * n);  // (long enough runs that the lanes refill many times)
       }
+  }
+}
+
+TEST_CASE("lock step: an exception thrown for one particle is rethrown after the run, not a termination") {
+  const auto table = table_of("clover");
+  dynamics::RunOptions opt;
+  opt.record_times = {0, 50};
+  const PeriodicDriveFlight flight{Vec2(3, 4), 10 * pi, 0};
+  const auto sampled = dynamics::microcanonical(table, flight, 1.0, 7);
+  const auto initial = [&](std::size_t i) {
+    if (i == 13) throw std::runtime_error("particle 13 cannot start");
+    return sampled(i);
+  };
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    CHECK_THROWS_WITH(dynamics::run_ensemble(table, flight, initial, opt, 40, threads), "particle 13 cannot start");
   }
 }

@@ -143,11 +143,14 @@ double variance(const std::vector<double>& x) {
 Run exact_run(const Table& table, const PeriodicDriveFlight& flight, const dynamics::State& s0, double t_end) {
   Run run;
   auto s = flight.start(s0);
-  for (dynamics::Hit hit; (hit = dynamics::collision(table, flight, s, t_end)).found();) {
-    run.bounces.push_back({hit.t, hit.wall, hit.point});
+  dynamics::Clock clock;  // (each flight on its own clock, as in every run)
+  dynamics::restart_clock(flight, s, clock);
+  for (dynamics::Hit hit; (hit = dynamics::collision(table, flight, s, clock.until(t_end))).found();) {
+    run.bounces.push_back({clock.after(hit.t), hit.wall, hit.point});
     dynamics::bounce(flight, s, hit);
+    dynamics::restart_clock(flight, s, clock);
   }
-  run.end = flight.advance(s, t_end);
+  run.end = dynamics::on_clock(flight.advance(s, clock.until(t_end)), clock);
   run.escaped = !table.contains(run.end.x);
   return run;
 }

@@ -39,18 +39,28 @@ Vec2T<Real> towards_center(const Vec2T<Real>& v, const Real& omega_c) {
   return omega_c > 0 ? Vec2T<Real>(v.y(), -v.x()) : Vec2T<Real>(-v.y(), v.x());
 }
 
-/// The exit time from the half angle of the outward crossing, or +∞: past t_end, or outside
-/// the wall's span (the one crossing of each turn: the orbit never leaves through this wall).
+/// The time at which the orbit has turned by twice the half angle of u (u ≠ 0, u.y ≥ 0).
+template <class Real>
+Real time_at(const Gyration<Real>& g, const Vec2T<Real>& u) {
+  using std::atan2;
+  return g.s.t + 2 * Real(atan2(u.y(), u.x())) / g.k;
+}
+
+/// Is the half angle of u earlier than that of u_best (both ≠ 0 in [0, π))?
+template <class Real>
+bool earlier(const Vec2T<Real>& u, const Vec2T<Real>& u_best) {
+  return u.x() * u_best.y() - u.y() * u_best.x() > 0;
+}
+
+/// The exit time from the half angle u of the outward crossing (u = 0: none), or +∞: past
+/// t_end, or outside the wall's span (the one crossing of each turn: the orbit never leaves
+/// through this wall).
 template <class Real, class Wall>
 Real exit_at(const Gyration<Real>& g, const Wall& w, const Vec2T<Real>& u, const Real& t_end) {
-  using std::atan2;
   // (The span first: it rules out most crossings without an arctangent.)
   if ((u.x() == 0 && u.y() == 0) || !w.within_span(g.position_at_half_angle(u))) return never;
-  const Real t = g.s.t + 2 * Real(atan2(u.y(), u.x())) / g.k;
-  if (t > t_end) return never;
-  g.found_t = t;
-  g.found_u = u;
-  return t;
+  const Real t = time_at(g, u);
+  return t > t_end ? Real(never) : t;
 }
 
 /// The first outward zero of F0 + B1 sin φ + B2 (1 − cos φ) over one turn φ ∈ [0, 2π), as the
@@ -59,7 +69,7 @@ Real exit_at(const Gyration<Real>& g, const Wall& w, const Vec2T<Real>& u, const
 /// now (u = (1, 0)), as for every flight (flight.hpp).  A touch (a double root) is no crossing.
 /// `D` is B1² − F0 (F0 + 2 B2), the discriminant, computed by the caller in its accurate form.
 template <class Real>
-Vec2T<Real> outward_half_angle(const Real& F0, const Real& B1, const Real& B2, const Real& D, const Real& near) {
+[[gnu::always_inline]] inline Vec2T<Real> outward_half_angle(const Real& F0, const Real& B1, const Real& B2, const Real& D, const Real& near) {
   using V = Vec2T<Real>;
   using std::sqrt;
   // Beyond the wall by rounding and moving out (or along it and curving out): now.
@@ -71,16 +81,16 @@ Vec2T<Real> outward_half_angle(const Real& F0, const Real& B1, const Real& B2, c
   // from a wall just bounced off (F0 ≈ 0, B1 < 0) it is the far end of the chord, not the
   // start point.
   const Real root = sqrt(D);
-  V u = B1 <= 0 ? V(F0 + 2 * B2, root - B1) : V(-B1 - root, F0);
-  if (u.y() < 0 || (u.y() == 0 && u.x() < 0)) u = -u;  // ψ ∈ [0, π): one turn from now
-  return u;
+  const Real x = B1 <= 0 ? Real(F0 + 2 * B2) : Real(-B1 - root), y = B1 <= 0 ? Real(root - B1) : F0;
+  const bool turn = y < 0 || (y == 0 && x < 0);  // ψ ∈ [0, π): one turn from now
+  return turn ? V(-x, -y) : V(x, y);
 }
 
 /// The outward half angle (as outward_half_angle) through a line, or a plane parallel to the
 /// field, at the signed distance `dist` beyond it, with B1 = n·v⊥ and B2 = n·w0 (n its normal):
 /// the gap is k × the distance, F0 = k dist.
 template <class Real>
-Vec2T<Real> line_half_angle(const Real& k, const Real& dist, const Real& B1, const Real& B2, const Real& speed,
+[[gnu::always_inline]] inline Vec2T<Real> line_half_angle(const Real& k, const Real& dist, const Real& B1, const Real& B2, const Real& speed,
                             const Real& slack) {
   using std::abs;
   const Real F0 = k * dist, near = k * slack;
@@ -88,6 +98,40 @@ Vec2T<Real> line_half_angle(const Real& k, const Real& dist, const Real& B1, con
   // the centre beyond the line)², a product free of cancellation at a graze.
   const Real mean = F0 + B2;
   const Real disc = abs(F0) <= near ? Real(B1 * B1 - F0 * (F0 + 2 * B2)) : Real((speed - mean) * (speed + mean));
+  return outward_half_angle(F0, B1, B2, disc, near);
+}
+
+/// The outward crossing of the wall's line in the coming turn, as a half-angle direction
+/// u ∝ (cos ψ, sin ψ), ψ ∈ [0, π), whether or not it lies within the wall's span; u = 0: none,
+/// or the orbit cannot reach the wall at all.
+template <class Real>
+[[gnu::always_inline]] inline Vec2T<Real> crossing(const Gyration<Real>& g, const BasicSegmentWall<Real>& w) {
+  if (!g.may_reach(w, Real(never))) return Vec2T<Real>::Zero();
+  // F = k × (distance beyond the line): F0 now, B1 = n·v0, B2 = n·w0; B1² + B2² = |v0|².
+  return line_half_angle(g.k, Real(w.normal.dot(g.s.x - w.a)), Real(w.normal.dot(g.s.v)), Real(w.normal.dot(g.w0)),
+                         g.speed, w.slack);
+}
+
+/// The same through the wall's circle.
+template <class Real>
+[[gnu::always_inline]] inline Vec2T<Real> crossing(const Gyration<Real>& g, const BasicArcWall<Real>& w) {
+  using std::abs;
+  if (!g.may_reach(w, Real(never))) return Vec2T<Real>::Zero();
+  // F = ±(k/2)(|x − c|² − r²), + for a focusing arc: beyond the wall is outside its circle.
+  const Real sign = w.focusing ? 1 : -1, k = g.k;
+  const Vec2T<Real> p = g.s.x - w.center;
+  const Real F0 = sign * k / 2 * (p.squaredNorm() - w.radius2), B1 = sign * p.dot(g.s.v),
+             B2 = sign * (p.dot(g.w0) + g.speed * g.radius);
+  const Real near = k * w.radius * w.slack;
+  Real disc;
+  if (abs(F0) <= near) {
+    disc = B1 * B1 - F0 * (F0 + 2 * B2);
+  } else {
+    // (k/2)² ((r + ρ)² − d²)(d² − (r − ρ)²), d the distance between the centres: each factor
+    // a sum of three lengths, zero at a graze.
+    const Real d = (g.center - w.center).norm(), r = w.radius, rho = g.radius;
+    disc = k * k / 4 * ((r - d + rho) * (r + d - rho)) * ((d + rho - r) * (d + rho + r));
+  }
   return outward_half_angle(F0, B1, B2, disc, near);
 }
 
@@ -152,6 +196,7 @@ Gyration<Real, D>::Gyration(const BasicMagneticFlight<Real, D>& flight, const Ba
   }
   center = state.x + w0 * inv_k;
   radius = speed * inv_k;
+  rounding = 16 * scan::eps<Real> * (center.template lpNorm<Eigen::Infinity>() + radius);
 }
 
 template <class Real, int D>
@@ -168,28 +213,42 @@ Real Gyration<Real, D>::period() const {
 }
 
 template <class Real, int D>
-auto Gyration<Real, D>::position_at_half_angle(const Vec2T<Real>& u) const -> V
-  requires(D == 2) {
-  const Real scale = 2 * inv_k / u.squaredNorm();  // (2/k) / |u|², with sin ψ cos ψ = u_x u_y/|u|²
-  return s.x + scale * (u.x() * u.y() * s.v + u.y() * u.y() * w0);
-}
-
-template <class Real, int D>
 auto Gyration<Real, D>::first_hit(const BasicTable<Real>& table, const Real& t_end) const
     -> FlightHit<BasicMagneticFlight<Real>>
   requires(D == 2) {
   using std::sqrt;
   FlightHit<BasicMagneticFlight<Real>> hit;
   hit.t = t_end;
-  detail::try_every_wall(table, *this, hit);
+  // The closed forms: the earliest crossing within its wall's span (ties: the first wall).
+  Vec2T<Real> best = Vec2T<Real>::Zero();
+  bool has_best = false;
+  auto closed_forms = [&](const auto& walls, int kind) {
+    for (int i = 0, n = int(walls.size()); i < n; ++i) {
+      const Vec2T<Real> u = crossing(*this, walls[i]);
+      if ((u.x() == 0 && u.y() == 0) || (has_best && !earlier(u, best))) continue;
+      if (walls[i].within_span(position_at_half_angle(u))) best = u, has_best = true, hit.wall = {kind, i};
+    }
+  };
+  closed_forms(table.segments(), wall_kind::segment);
+  closed_forms(table.arcs(), wall_kind::arc);
+  if (has_best) {
+    if (const Real t = time_at(*this, best); t < t_end) hit.t = t;
+    else hit.wall = {};
+  }
+  // The elliptic arcs' scans, each up to the best hit so far.
+  bool scanned = false;
+  for (int i = 0, n = int(table.elliptic_arcs().size()); i < n; ++i) {
+    if (const Real t = exit_time(table.elliptic_arcs()[i], hit.t); t < hit.t)
+      hit.t = t, hit.wall = {wall_kind::elliptic_arc, i}, scanned = true;
+  }
   if (!hit.found()) return hit;
   hit.state = s;
   hit.state.t = hit.t;
   const Real tau = hit.t - s.t;
-  if (hit.t == found_t) {
-    const Real norm = sqrt(found_u.squaredNorm());
-    std::tie(hit.state.x, hit.state.v) = turned(*this, Real(found_u.y() / norm), Real(found_u.x() / norm), tau);
-  } else {  // (an elliptic arc's scan)
+  if (!scanned) {
+    const Real norm = sqrt(best.squaredNorm());
+    std::tie(hit.state.x, hit.state.v) = turned(*this, Real(best.y() / norm), Real(best.x() / norm), tau);
+  } else {
     std::tie(hit.state.x, hit.state.v) = at(tau);
   }
   return hit;
@@ -199,9 +258,10 @@ template <class Real, int D>
 template <class Wall>
 bool Gyration<Real, D>::may_reach(const Wall& w, const Real& t_end) const
   requires(D == 2) {
-  const Real margin = 16 * scan::eps<Real> * (center.template lpNorm<Eigen::Infinity>() + radius + w.bound_radius);
-  const Real reach = radius + w.bound_radius + margin;
-  if ((center - w.bound_center).squaredNorm() > reach * reach) return false;
+  const Real margin = rounding + 16 * scan::eps<Real> * w.bound_radius;
+  const Real reach = radius + w.bound_radius + margin, inner = radius - w.bound_radius - margin;
+  const Real d2 = (center - w.bound_center).squaredNorm();
+  if (d2 > reach * reach || (inner > 0 && d2 < inner * inner)) return false;
   if (t_end == never) return true;
   // The arc flown until t_end is no shorter than its chord.
   const Real travel = speed * (t_end - s.t) + w.bound_radius + margin;
@@ -211,33 +271,13 @@ bool Gyration<Real, D>::may_reach(const Wall& w, const Real& t_end) const
 template <class Real, int D>
 Real Gyration<Real, D>::exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const
   requires(D == 2) {
-  if (!may_reach(w, t_end)) return never;
-  // F = k × (distance beyond the line): F0 now, B1 = n·v0, B2 = n·w0; B1² + B2² = |v0|².
-  return exit_at(*this, w, line_half_angle(k, Real(w.normal.dot(s.x - w.a)), Real(w.normal.dot(s.v)),
-                                           Real(w.normal.dot(w0)), speed, w.slack), t_end);
+  return may_reach(w, t_end) ? exit_at(*this, w, crossing(*this, w), t_end) : Real(never);
 }
 
 template <class Real, int D>
 Real Gyration<Real, D>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) const
   requires(D == 2) {
-  if (!may_reach(w, t_end)) return never;
-  // F = ±(k/2)(|x − c|² − r²), + for a focusing arc: beyond the wall is outside its circle.
-  const Real sign = w.focusing ? 1 : -1;
-  const V p = s.x - w.center;
-  const Real F0 = sign * k / 2 * (p.squaredNorm() - w.radius2), B1 = sign * p.dot(s.v),
-             B2 = sign * (p.dot(w0) + speed * radius);
-  const Real near = k * w.radius * w.slack;
-  using std::abs;
-  Real disc;
-  if (abs(F0) <= near) {
-    disc = B1 * B1 - F0 * (F0 + 2 * B2);
-  } else {
-    // (k/2)² ((r + ρ)² − d²)(d² − (r − ρ)²), d the distance between the centres: each factor
-    // a sum of three lengths, zero at a graze.
-    const Real d = (center - w.center).norm(), r = w.radius, rho = radius;
-    disc = k * k / 4 * ((r - d + rho) * (r + d - rho)) * ((d + rho - r) * (d + rho + r));
-  }
-  return exit_at(*this, w, outward_half_angle(F0, B1, B2, disc, near), t_end);
+  return may_reach(w, t_end) ? exit_at(*this, w, crossing(*this, w), t_end) : Real(never);
 }
 
 template <class Real, int D>
@@ -586,7 +626,6 @@ template double Gyration<double, 2>::exit_time(const BasicSegmentWall<double>&, 
 template double Gyration<double, 2>::exit_time(const BasicArcWall<double>&, const double&) const;
 template double Gyration<double, 2>::exit_time(const BasicEllipticArcWall<double>&, const double&) const;
 template FlightHit<BasicMagneticFlight<double>> Gyration<double, 2>::first_hit(const BasicTable<double>&, const double&) const;
-template Vec2T<double> Gyration<double, 2>::position_at_half_angle(const Vec2T<double>&) const;
 template BasicState<double> BasicMagneticFlight<double>::advance(const State&, const double&) const;
 template double BasicMagneticFlight<double>::period() const;
 template Gyration<long double, 2>::Gyration(const BasicMagneticFlight<long double>&, const BasicState<long double>&);
@@ -596,7 +635,6 @@ template long double Gyration<long double, 2>::exit_time(const BasicSegmentWall<
 template long double Gyration<long double, 2>::exit_time(const BasicArcWall<long double>&, const long double&) const;
 template long double Gyration<long double, 2>::exit_time(const BasicEllipticArcWall<long double>&, const long double&) const;
 template FlightHit<BasicMagneticFlight<long double>> Gyration<long double, 2>::first_hit(const BasicTable<long double>&, const long double&) const;
-template Vec2T<long double> Gyration<long double, 2>::position_at_half_angle(const Vec2T<long double>&) const;
 template BasicState<long double> BasicMagneticFlight<long double>::advance(const State&, const long double&) const;
 template long double BasicMagneticFlight<long double>::period() const;
 template Gyration<Reference, 2>::Gyration(const BasicMagneticFlight<Reference>&, const BasicState<Reference>&);
@@ -606,7 +644,6 @@ template Reference Gyration<Reference, 2>::exit_time(const BasicSegmentWall<Refe
 template Reference Gyration<Reference, 2>::exit_time(const BasicArcWall<Reference>&, const Reference&) const;
 template Reference Gyration<Reference, 2>::exit_time(const BasicEllipticArcWall<Reference>&, const Reference&) const;
 template FlightHit<BasicMagneticFlight<Reference>> Gyration<Reference, 2>::first_hit(const BasicTable<Reference>&, const Reference&) const;
-template Vec2T<Reference> Gyration<Reference, 2>::position_at_half_angle(const Vec2T<Reference>&) const;
 template BasicState<Reference> BasicMagneticFlight<Reference>::advance(const State&, const Reference&) const;
 template Reference BasicMagneticFlight<Reference>::period() const;
 template BasicState<double> BasicMagneticDriveFlight<double>::advance(const State&, const double&) const;

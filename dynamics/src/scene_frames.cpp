@@ -1,5 +1,6 @@
 #include "billiards/dynamics/scene_frames.hpp"
 
+#include "billiards/dynamics/first_error.hpp"
 #include "billiards/dynamics/follow.hpp"
 #include "billiards/dynamics/scene_run.hpp"
 
@@ -48,9 +49,11 @@ void fill_frames(const Scene& scene, SceneFrames& f, std::size_t first, std::siz
     using Flight = std::decay_t<decltype(flight)>;
     const auto table = table_of<Flight>(scene);
     const auto initial = initial_states(scene, table, flight);
+    FirstError error;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (std::ptrdiff_t i = std::ptrdiff_t(first); i < std::ptrdiff_t(last); ++i)
-      follow_particle(scene, table, flight, initial(std::size_t(i)), f, std::size_t(i));
+      error.run(std::size_t(i), [&] { follow_particle(scene, table, flight, initial(std::size_t(i)), f, std::size_t(i)); });
+    error.rethrow();
   });
 }
 

@@ -295,6 +295,9 @@ def test_phase_space_functions_give_the_programs_numbers(source, tmp_path):
     assert bk.chaos(shape, orbits=3, collisions=50000)["ergodic"] is True
     with pytest.raises(ValueError, match="needs a time horizon"):  # (a magnetic field with a force)
         bk.boundary_map(bk.load_scene(source / "scenes" / "clover-magnetic-driven.yaml"))
+    with pytest.raises(ValueError, match="give time="):
+        bk.trajectory(bk.load_scene(source / "scenes" / "clover-magnetic-driven.yaml"), collisions=50)
+    assert bk.trajectory(bk.load_scene(source / "scenes" / "clover-magnetic-driven.yaml"), time=2)["times"][-1] <= 2
 
 
 def test_escape_gives_the_programs_numbers_and_kacs_lemma(source, tmp_path):

@@ -165,17 +165,20 @@ std::vector<EscapeRecord> escape_times(const dynamics::TableFor<Flight>& table, 
         auto s = initial(i);
         const double t0 = double(s.t);
         const auto v2 = s.v.squaredNorm();
+        dynamics::BasicClock<typename Flight::Scalar> clock;
+        dynamics::restart_clock(flight, s, clock);
         for (std::size_t k = 0; k < max_collisions; ++k) {
           const auto hit = collision(table, flight, s);  // (by argument lookup: a flight's own overloads too)
           if (!hit.found()) return r.lost = true, r;
           if (leaves(hit)) {
-            r.time = double(hit.t) - t0;
+            r.time = double(clock.after(hit.t)) - t0;
             r.collisions = k;
             r.escaped = true;
             return r;
           }
           bounce(flight, s, hit);
           if constexpr (Flight::conserves_energy) dynamics::restore_speed(s.v, v2);
+          dynamics::restart_clock(flight, s, clock);
         }
         r.time = std::nan("");
         r.collisions = max_collisions;

@@ -4,6 +4,8 @@
 // results are bit-identical for any number of threads, as for `billiard run`.
 #pragma once
 
+#include "billiards/dynamics/first_error.hpp"
+
 #include <omp.h>
 
 #include <atomic>
@@ -14,19 +16,24 @@
 namespace billiards::analysis {
 
 /// results[i] = work(i) for i in [0, n), on `threads` threads (0: all); `progress(done)` is
-/// called from one thread now and then.
+/// called from one thread now and then.  An exception thrown by work(i) is rethrown after the
+/// loop (the lowest i's).
 template <class Work>
 auto for_each_particle(std::size_t n, int threads, Work&& work,
                        const std::function<void(std::size_t)>& progress = {}) {
   std::vector<decltype(work(std::size_t(0)))> results(n);
   std::atomic<std::size_t> done{0};
   if (threads <= 0) threads = omp_get_max_threads();
+  dynamics::FirstError error;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
   for (std::ptrdiff_t i = 0; i < std::ptrdiff_t(n); ++i) {
-    results[std::size_t(i)] = work(std::size_t(i));
-    const std::size_t d = ++done;
-    if (progress && omp_get_thread_num() == 0) progress(d);
+    error.run(std::size_t(i), [&] {
+      results[std::size_t(i)] = work(std::size_t(i));
+      const std::size_t d = ++done;
+      if (progress && omp_get_thread_num() == 0) progress(d);
+    });
   }
+  error.rethrow();
   if (progress) progress(n);
   return results;
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "billiards/dynamics/collision.hpp"
+#include "billiards/dynamics/first_error.hpp"
 #include "billiards/dynamics/lockstep.hpp"
 #include "billiards/dynamics/random.hpp"
 
@@ -73,6 +74,8 @@ double energy_of(const Flight& flight, const typename Flight::State& s, double m
 
 /// One particle's run, a collision at a time: records its energy at each record time into
 /// `energies` (NaN after an escape).  Flights are searched up to the last record time only.
+/// Each flight runs on its own clock (collision.hpp's restart_clock): the state's t is the time
+/// since the last bounce, the run's time is kept in `clock()`.
 /// `TableT` is a 2-D table (table.hpp) or a 3-D one (table3.hpp): the verbs `collision`,
 /// `bounce` and `sample_microcanonical` are found for either by overload resolution.
 template <class Flight, class TableT = dynamics::Table>
@@ -81,7 +84,9 @@ class Trajectory {
   Trajectory(const TableT& table, const Flight& flight, typename Flight::State s, const RunOptions& opt,
              double* energies)
       : table_(&table), flight_(&flight), opt_(&opt), s_(s), energies_(energies),
-        v2_(s.v.squaredNorm()), t_final_(opt.record_times.empty() ? s.t : opt.record_times.back()) {}
+        v2_(s.v.squaredNorm()), t_final_(opt.record_times.empty() ? s.t : opt.record_times.back()) {
+    restart_clock(flight, s_, clock_);
+  }
 
   /// Advances to the next collision (recording the times passed on the way); false when done.
   bool step() { return !done() && advance_to(collision(*table_, *flight_, s_, horizon())); }
@@ -89,9 +94,11 @@ class Trajectory {
   bool done() const { return k_ == opt_->record_times.size(); }
   /// The end of the search for the next collision.  A straight flight costs the same whatever
   /// the horizon: it is searched without one, so that a particle that meets no wall at all is
-  /// caught as an escape at once.
-  double horizon() const { return is_straight<Flight> ? never : t_final_; }
+  /// caught as an escape at once.  (On the flight's own clock.)
+  double horizon() const { return is_straight<Flight> ? never : clock_.until(t_final_); }
+  /// The state (its t on the flight's own clock) and the run's time at the start of its flight.
   const typename Flight::State& state() const { return s_; }
+  const Clock& clock() const { return clock_; }
   /// `step` with the next collision, collision(table, flight, state(), horizon()), found by the
   /// caller (run_particles, several particles in lock step).
   template <class HitT>
@@ -99,8 +106,8 @@ class Trajectory {
     const auto& times = opt_->record_times;
     const std::size_t n = times.size();
     const double t_next = hit.found() ? hit.t : never;
-    for (; k_ < n && times[k_] <= t_next; ++k_) {
-      const auto r = flight_->advance(s_, times[k_]);
+    for (; k_ < n && clock_.until(times[k_]) <= t_next; ++k_) {
+      const auto r = flight_->advance(s_, clock_.until(times[k_]));
       if (!table_->contains(r.x)) return escape();
       energies_[k_] = energy_of(*flight_, r, opt_->mass);
     }
@@ -111,6 +118,7 @@ class Trajectory {
     if (zero_flights_ > opt_->max_zero_flights) return escape();
     bounce(*flight_, s_, hit);
     if constexpr (Flight::conserves_energy) restore_speed(s_.v, v2_);
+    restart_clock(*flight_, s_, clock_);
     ++log_.collisions;
     return true;
   }
@@ -144,6 +152,7 @@ class Trajectory {
   typename Flight::State s_;
   double* energies_;
   double v2_, t_final_;
+  Clock clock_;
   std::size_t k_ = 0;
   int zero_flights_ = 0;
   ParticleLog log_;
@@ -193,8 +202,9 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
   const std::size_t m = opt.record_times.size();
   std::atomic<std::size_t> next{first}, done{0};
   StopCheck stop(opt);
+  FirstError error;
 #pragma omp parallel num_threads(threads)
-  {
+  error.run(0, [&] {
     std::optional<Run> runs[lanes];
     std::size_t index[lanes];
     auto refill = [&](int i) {
@@ -220,18 +230,21 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
         while (runs[i] && runs[i]->done()) finish(i);  // (no record time after the start)
         if (runs[i]) states[n] = &runs[i]->state(), horizons[n] = runs[i]->horizon(), lane_of[n++] = i;
       }
-      if (n == 0 || stop.stopped()) break;
+      if (n == 0 || stop.stopped() || error.failed()) break;
       lockstep_table.collisions(states, horizons, n, hits);
       for (int j = 0; j < n; ++j) {
         if (!runs[lane_of[j]]->advance_to(hits[j])) finish(lane_of[j]);
       }
     }
-  }
+  });
+  error.rethrow();
   if (progress) progress(done);
 }
 
 /// Runs particles [first, last) of an ensemble.  `initial(i)` gives particle i's state (it
-/// must depend on i only); `progress(done)` is called from one thread now and then.
+/// must depend on i only); `progress(done)` is called from one thread now and then.  An exception
+/// thrown for a particle stops the run and is rethrown after it (first_error.hpp; in lock step,
+/// the first one thrown).
 template <class Flight, class TableT, class Initial>
 void run_particles(const TableT& table, const Flight& flight, const Initial& initial,
                    const RunOptions& opt, std::size_t first, std::size_t last, int threads,
@@ -246,8 +259,9 @@ void run_particles(const TableT& table, const Flight& flight, const Initial& ini
   const std::size_t batches = (last - first + together - 1) / together;
   std::atomic<std::size_t> done{0};
   StopCheck stop(opt);
+  FirstError error;
 #pragma omp parallel for schedule(dynamic, 2) num_threads(threads)
-  for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(batches); ++b) {
+  for (std::ptrdiff_t b = 0; b < std::ptrdiff_t(batches); ++b) error.run(std::size_t(b), [&] {
     const std::size_t lo = first + std::size_t(b) * together;
     const std::size_t hi = std::min(last, lo + together);
     boost::container::static_vector<Trajectory<Flight, TableT>, together> runs;
@@ -260,7 +274,8 @@ void run_particles(const TableT& table, const Flight& flight, const Initial& ini
     for (std::size_t i = lo; i < hi; ++i) out.logs[i] = runs[i - lo].log();
     const std::size_t d = done += hi - lo;
     if (progress && omp_get_thread_num() == 0) progress(d);
-  }
+  });
+  error.rethrow();
   if (progress) progress(done);
 }
 

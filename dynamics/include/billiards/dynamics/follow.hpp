@@ -24,12 +24,18 @@ struct SampleClock {
   bool due_by(double t) const { return dt > 0 && time(k) <= t; }
 };
 
-/// Reports the flight from `s` at every sample time of `clock` up to `t` (inclusive) as
-/// on_sample(state), and moves the clock past them.
+/// Reports the flight from `s` (its time on the flight's own clock, which started at the run's
+/// time `run`) at every sample time of `clock` up to `t` (inclusive; times absolute) as
+/// on_sample(state), its time absolute, and moves the clock past them.
 template <class Flight, class OnSample>
-void sample_flight(const Flight& flight, const typename Flight::State& s, double t, SampleClock& clock,
-                   OnSample&& on_sample) {
-  for (; clock.due_by(t); ++clock.k) on_sample(flight.advance(s, clock.time(clock.k)));
+void sample_flight(const Flight& flight, const typename Flight::State& s, const Clock& run, double t,
+                   SampleClock& clock, OnSample&& on_sample) {
+  for (; clock.due_by(t); ++clock.k) {
+    const double at = clock.time(clock.k);
+    auto r = flight.advance(s, run.until(at));
+    r.t = at;
+    on_sample(std::as_const(r));
+  }
 }
 
 /// Where a stream ends: after `collisions` bounces or at time `t_end`, whichever comes first.
@@ -51,16 +57,20 @@ struct FollowResult {
 /// on_sample(state) at each time of `clock` (the state before a bounce that falls on one), up to
 /// the limits.  A flight that meets no wall is an escape for a straight flight (searched with no
 /// horizon, as Trajectory does) or when there is no end time (a closed orbit then is trapped,
-/// not escaped); a curved flight searched up to t_end meets none when it reaches t_end first.  A particle stuck in a corner is an escape too.  Energy-conserving flights restore the speed
-/// after every bounce, as `evolve` does, so both give the same states bit for bit.
+/// not escaped); a curved flight searched up to t_end meets none when it reaches t_end first.
+/// A particle stuck in a corner is an escape too.  Energy-conserving flights restore the speed
+/// after every bounce, and each flight runs on its own clock, as in `evolve`, so both give the
+/// same states bit for bit (times absolute in what they report).
 template <class TableT, class Flight, class OnBounce, class OnSample>
 FollowResult follow(const TableT& table, const Flight& flight, typename Flight::State s, const FollowLimits& limits,
                     SampleClock clock, OnBounce&& on_bounce, OnSample&& on_sample) {
   const auto v2 = s.v.squaredNorm();
-  const double horizon = is_straight<Flight> ? never : limits.t_end;
+  Clock run;
+  restart_clock(flight, s, run);
   FollowResult result;
   int zero_flights = 0;
   while (result.collisions < limits.collisions) {
+    const double horizon = is_straight<Flight> ? never : run.until(limits.t_end);
     const auto hit = collision(table, flight, s, horizon);
     if (!hit.found() && horizon == never) {
       // A closed orbit (`closes_orbit`: a magnetic one without drift along the field) that
@@ -69,8 +79,9 @@ FollowResult follow(const TableT& table, const Flight& flight, typename Flight::
       else result.escaped = true;
       break;
     }
-    const bool ends = !hit.found() || hit.t > limits.t_end;
-    sample_flight(flight, s, ends ? limits.t_end : double(hit.t), clock, on_sample);
+    const double t_hit = hit.found() ? run.after(hit.t) : never;
+    const bool ends = t_hit > limits.t_end;
+    sample_flight(flight, s, run, ends ? limits.t_end : t_hit, clock, on_sample);
     if (ends) break;
     zero_flights = hit.t == s.t ? zero_flights + 1 : 0;
     if (zero_flights > limits.max_zero_flights) {
@@ -80,7 +91,8 @@ FollowResult follow(const TableT& table, const Flight& flight, typename Flight::
     bounce(flight, s, hit);
     if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
     ++result.collisions;
-    on_bounce(hit, std::as_const(s));
+    on_bounce(on_clock(hit, run), on_clock(s, run));
+    restart_clock(flight, s, run);
   }
   return result;
 }

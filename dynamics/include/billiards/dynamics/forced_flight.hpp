@@ -276,13 +276,13 @@ struct BasicQuiveringWallFlight {
 };
 using QuiveringWallFlight = BasicQuiveringWallFlight<double>;
 
-/// Reflection off a moving wall: v' = v − 2((v − ḋ)·n)n (overloads collision.hpp's bounce;
-/// `HitT` as there).
+/// Reflection off a moving wall: v' = v − 2((v − ḋ)·n)n/(n·n), divided by n·n as the lab's
+/// (overloads collision.hpp's bounce; `HitT` as there).
 template <class Real, class HitT>
 void bounce(const BasicQuiveringWallFlight<Real>& flight, BasicDrivenState<Real>& s, const HitT& hit) {
   s = state_at(flight, s, hit);
   s.x = hit.point;
-  s.v -= 2 * (s.v - flight.wall_velocity(s)).dot(hit.normal) * hit.normal;
+  s.v = reflect(s.v, hit.normal, Real(2 * (s.v - flight.wall_velocity(s)).dot(hit.normal)));
 }
 
 /// A static uniform force F on a particle of mass m: parabolic flights.

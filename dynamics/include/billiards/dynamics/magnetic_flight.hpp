@@ -53,6 +53,7 @@ struct Gyration {
   Real speed;     // |v⊥|
   V center;       // of gyration, x0 + w0/k (in 3-D at the start: it drifts by v∥ τ)
   Real radius;    // r_c = |v⊥|/k
+  Real rounding;  // of points on the circle: 16 ε (|centre|∞ + r_c) (2-D)
 
   Gyration(const BasicMagneticFlight<Real, D>& flight, const BasicState<Real, D>& state);
   /// Position and velocity τ after the start.
@@ -63,15 +64,19 @@ struct Gyration {
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
   Real exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const requires(D == 2);
   /// The first wall of the table the orbit leaves through before t_end, with the state there
-  /// from the crossing's half angle where a closed form found it (no sine or cosine).
+  /// from the crossing's half angle where a closed form found it (no sine or cosine).  The
+  /// closed forms' crossings are compared as half angles (cross products, no arctangent), so
+  /// that only a crossing earlier than the best so far gets a span test, and only the winner
+  /// an arctangent.
   FlightHit<BasicMagneticFlight<Real>> first_hit(const BasicTable<Real>& table, const Real& t_end) const
     requires(D == 2);
   /// Position after turning by φ = 2ψ, from (cos ψ, sin ψ) ∝ u (no sine or cosine; 2-D).
-  V position_at_half_angle(const Vec2T<Real>& u) const requires(D == 2);
-  /// The last crossing a closed form returned (its time and half angle), for first_hit.
-  mutable Real found_t = never;
-  mutable Vec2T<Real> found_u = Vec2T<Real>::Zero();
-  /// Can the orbit meet the wall's bounding disk before t_end?
+  V position_at_half_angle(const Vec2T<Real>& u) const requires(D == 2) {
+    const Real scale = 2 * inv_k / u.squaredNorm();  // (2/k) / |u|², with sin ψ cos ψ = u_x u_y/|u|²
+    return s.x + scale * (u.x() * u.y() * s.v + u.y() * u.y() * w0);
+  }
+  /// Can the orbit meet the wall's bounding disk (before t_end)?  Not when the disk lies wholly
+  /// outside the cyclotron circle or wholly inside it.
   template <class Wall>
   bool may_reach(const Wall& w, const Real& t_end) const requires(D == 2);
 
@@ -134,6 +139,9 @@ struct BasicMagneticDriveFlight {
   using Scalar = Real;
   using State = BasicState<Real, D>;
   static constexpr bool conserves_energy = false;
+  /// The drive's phase is ω t + phase0 from the state's t (collision.hpp's restart_clock leaves
+  /// the absolute time there).
+  static constexpr bool reads_absolute_time = true;
 
   Cyclotron<Real, D> omega_c;  // Ω = qB/m
   VecN<Real, D> accel;         // F/m

@@ -288,6 +288,7 @@ struct BasicSegmentWall {
   V normal;    // outward unit normal (right of a→b)
   V dir;       // (b - a) / |b - a|²
   Real slack;  // absolute tolerance along the segment
+  Real span_tol;      // slack |dir|: the tolerance in units of the segment's parameter
   V bound_center;     // a disk holding the segment and its span's slack
   Real bound_radius;
 
@@ -298,14 +299,14 @@ struct BasicSegmentWall {
     using std::max;
     slack = span_slack_ulps<Real> * max({Real(a.template lpNorm<Eigen::Infinity>()),
                                          Real(b.template lpNorm<Eigen::Infinity>()), Real(d.norm())});
+    span_tol = slack * dir.norm();
     bound_center = (a + b) / 2;
     bound_radius = d.norm() / 2 + slack;
   }
   /// Is p (on the supporting line, to rounding) within the segment, ends included?
   bool within_span(const V& p) const {
     const Real s = (p - a).dot(dir);
-    const Real tol = slack * dir.norm();
-    return s >= -tol && s <= 1 + tol;
+    return s >= -span_tol && s <= 1 + span_tol;
   }
   /// The point of the segment nearest p: a hit point computed near a corner may lie past the
   /// end by up to the span slack, beyond the neighbouring wall; projected, it never does.
