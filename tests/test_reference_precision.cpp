@@ -171,13 +171,13 @@ TEST_CASE("PhaseSample::shifted: sin and cos of theta + h within 2 ulp of 1 of M
   // sample's by the angle-sum formulas and the Taylor series of sin h and cos h − 1; a wrong
   // coefficient of the series shows at |h| ~ h_max (1e-7 for the h⁷ term's).
   std::mt19937_64 rng(17);
-  std::uniform_real_distribution<double> phase(0, 7), shift(-dynamics::scan::PhaseSample<double>::h_max,
-                                                          dynamics::scan::PhaseSample<double>::h_max);
+  std::uniform_real_distribution<double> phase(0, 7), shift(-dynamics::PhaseSample<double>::h_max,
+                                                          dynamics::PhaseSample<double>::h_max);
   double worst = 0;
   for (int i = 0; i < 20000; ++i) {
     const double theta = phase(rng), h = i % 4 ? shift(rng) : std::copysign(0.05, shift(rng));
     const auto [s0, c0] = dynamics::sin_cos(theta);
-    const auto [s, c] = dynamics::scan::PhaseSample<double>{theta, s0, c0}.shifted(h);
+    const auto [s, c] = dynamics::PhaseSample<double>{theta, s0, c0}.shifted(h);
     const Reference exact = Reference(theta) + Reference(h);
     worst = std::max({worst, double(abs(Reference(s) - sin(exact))), double(abs(Reference(c) - cos(exact)))});
   }

@@ -15,33 +15,6 @@ namespace {
 using scan::eps;
 using scan::first_outward_crossing;
 using scan::Sample;
-
-/// Can a point within `pad` of the segment [p, q] lie in the wall's span?  The span is an
-/// intersection (or, for arcs longer than a half circle, a union) of half-planes, whose linear
-/// functions take their extremes over [p, q] at p or q; false only when certainly not.
-template <class Real>
-bool may_meet_span(const BasicSegmentWall<Real>& w, const Vec2T<Real>& p, const Vec2T<Real>& q, const Real& pad) {
-  using std::abs;
-  using std::max;
-  using std::min;
-  const Real sp = (p - w.a).dot(w.dir), sq = (q - w.a).dot(w.dir);
-  const Real margin = (w.slack + pad) * w.dir.norm() + 8 * eps<Real> * (1 + abs(sp) + abs(sq));
-  return max(sp, sq) >= -margin && min(sp, sq) <= 1 + margin;
-}
-
-template <class Real>
-bool may_meet_span(const BasicArcWall<Real>& w, const Vec2T<Real>& p, const Vec2T<Real>& q, const Real& pad) {
-  using std::max;
-  using std::min;
-  if (w.full) return true;
-  const Vec2T<Real> a = p - w.center, b = q - w.center;
-  // (|·|₁ ≥ |·| bounds the rounding of the cross products without a square root.)
-  const Real margin = w.radius * (w.slack + pad) + 16 * eps<Real> * w.radius * (a.template lpNorm<1>() + b.template lpNorm<1>());
-  if (w.ccw_extent <= geometry::pi)
-    return max(cross(w.from, a), cross(w.from, b)) >= -margin && max(cross(a, w.to), cross(b, w.to)) >= -margin;
-  return !(min(cross(w.to, a), cross(w.to, b)) > margin && min(cross(a, w.from), cross(b, w.from)) > margin);
-}
-
 }  // namespace
 
 // ---- Periodic drive ---------------------------------------------------------------------
@@ -60,7 +33,7 @@ namespace {
 /// The state's phase at τ after s, from `near` when known.
 template <class Real, int D>
 void set_phase_at(BasicDrivenState<Real, D>& r, const BasicDrivenState<Real, D>& s, const Real& omega, const Real& tau,
-                  const scan::PhaseSample<Real>& near) {
+                  const PhaseSample<Real>& near) {
   const auto theta = advance_phase(s.phase, omega, tau);
   if (near.known() && near.near(theta))
     r.set_phase(theta, near.at(theta));
@@ -71,7 +44,7 @@ void set_phase_at(BasicDrivenState<Real, D>& r, const BasicDrivenState<Real, D>&
 }  // namespace
 
 template <class Real, int D>
-auto BasicPeriodicDriveFlight<Real, D>::advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near) const
+auto BasicPeriodicDriveFlight<Real, D>::advance(const State& s, const Real& t, const PhaseSample<Real>& near) const
     -> State {
   const Real tau = t - s.t;
   State r = s;
@@ -109,59 +82,45 @@ auto clearance_of(const Q& q, const Wall& w) {
   };
 }
 
-/// Exit time through one wall of a flight described by the Quiver q (lab or quivering walls).
-template <class Real, class Q>
-Real driven_exit_time(const Q& q, const BasicSegmentWall<Real>& w, const Real& t0, const Real& t_end) {
+/// Exit time through one wall (a segment or an arc: its gap_along) of a flight described by the
+/// Quiver q (lab or quivering walls).
+template <class Real, class Q, class Wall>
+Real driven_exit_time(const Q& q, const Wall& w, const Real& t0, const Real& t_end) {
   if (!may_come_near(q, w, Real(t_end - t0))) return Real(never);
   // A crossing counts only if the particle, within δ of the guiding point, can be in the
-  // segment's span.
-  auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
+  // wall's span.
+  auto passes = [&](const Real& tau, const Real& end) { return !w.may_meet_span(q.guide(tau), q.guide(end), q.delta); };
   auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
   const Real tau = scan::with_creep(q, [&](auto clearance) {
-    return scan::driven_exit_through_plane(q, w.normal, w.a, w.slack, Real(t_end - t0), passes, in_span, clearance);
+    return scan::scan_windows(q, w.gap_along(q), passes, in_span, clearance, Real(t_end - t0));
   }, clearance_of(q, w));
   return tau == never ? Real(never) : Real(t0 + tau);
 }
 
-template <class Real, class Q>
-Real driven_exit_time(const Q& q, const BasicArcWall<Real>& w, const Real& t0, const Real& t_end) {
-  if (!may_come_near(q, w, Real(t_end - t0))) return Real(never);
-  auto passes = [&](const Real& tau, const Real& end) { return !may_meet_span(w, q.guide(tau), q.guide(end), q.delta); };
-  auto in_span = [&](const Vec2T<Real>& x) { return w.within_span(x); };
-  const Real tau = scan::with_creep(q, [&](auto clearance) {
-    return scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, Real(t_end - t0), passes,
-                                            in_span, clearance);
-  }, clearance_of(q, w));
-  return tau == never ? Real(never) : Real(t0 + tau);
-}
-
-/// fn(wall, gap): the segment or arc `id` of the table and its gap seen from the flight q.
-template <class Real, class Q, class Fn>
-void with_gap(const BasicTable<Real>& table, const Q& q, const WallId& id, Fn&& fn) {
-  if (id.kind == wall_kind::segment) {
-    const auto& w = table.segments()[id.index];
-    fn(w, scan::PlaneGap<Q, Vec2T<Real>>(q, w.normal, w.a, w.slack));
-  } else {
-    const auto& w = table.arcs()[id.index];
-    fn(w, scan::SphereGap<Q, Vec2T<Real>>(q, w.center, w.radius, w.focusing, w.slack));
-  }
+/// fn(wall): the segment or arc `id` of the table.
+template <class Real, class Fn>
+void with_wall(const BasicTable<Real>& table, const WallId& id, Fn&& fn) {
+  if (id.kind == wall_kind::segment)
+    fn(table.segments()[id.index]);
+  else
+    fn(table.arcs()[id.index]);
 }
 
 /// The first hit of the flight q among the table's segments and arcs before best.t, into
 /// `best` (t and wall) and `phase`.
 template <class Real, class Q>
-void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Real>& best, scan::PhaseSample<Real>& phase) {
+void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Real>& best, PhaseSample<Real>& phase) {
   Real tau_best = best.t - q.s.t;
   const int segments = int(table.segments().size());
   const auto id = [segments](int w) { return w < segments ? WallId{wall_kind::segment, w} : WallId{wall_kind::arc, w - segments}; };
   auto visit = [&](int w, auto&& fn) {
-    with_gap(table, q, id(w), [&](const auto& wall, const auto& gap) {
+    with_wall(table, id(w), [&](const auto& wall) {
       // A window in which the particle cannot reach the wall's span is passed unsampled.
       auto passes = [&](const Real& start, const Real& end) {
-        return !may_meet_span(wall, q.guide(start), q.guide(end), q.delta);
+        return !wall.may_meet_span(q.guide(start), q.guide(end), q.delta);
       };
       auto in_span = [&wall](const Vec2T<Real>& x) { return wall.within_span(x); };
-      fn(gap, passes, in_span);
+      fn(wall.gap_along(q), passes, in_span);
     });
   };
   int best_wall = -1;
@@ -178,7 +137,7 @@ template <class Flight>
 auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_end) const -> FlightHit<Flight> {
   BasicHit<Real> best;
   best.t = t_end;
-  scan::PhaseSample<Real> phase;  // the drive's phase sampled at the best root, if it was
+  PhaseSample<Real> phase;  // the drive's phase sampled at the best root, if it was
   // Wall by wall for creeping guides (creep's jumps are interleaved with the windows of one
   // wall at a time) and for tables of many walls, where each wall's disk test against the
   // best hit so far culls nearly all of them, while the windows of every wall along the guiding
@@ -221,7 +180,7 @@ auto DrivenScan<Flight>::exit_time(const BasicEllipticArcWall<Real>& w, const Re
 // ---- Quivering walls ---------------------------------------------------------------------
 
 template <class Real>
-auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near) const
+auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t, const PhaseSample<Real>& near) const
     -> State {
   const Real tau = t - s.t;
   State r = s;
@@ -319,7 +278,7 @@ Real BasicConstantForceFlight<Real>::exit_time(const State& s, const BasicArcWal
 
 namespace {
 
-using Quiver3 = scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
+using Quiver3 = Quiver<PeriodicDriveFlight3, DrivenState3>;
 const auto no_window_passed = [](double, double) { return false; };  // no spans to cull by
 const auto everywhere = [](const Vec3&) { return true; };
 
@@ -328,7 +287,7 @@ const auto everywhere = [](const Vec3&) { return true; };
 auto plane_clearance(const Quiver3& q, const Vec3& n, const Vec3& a) {
   return [&q, n, a](double tau) {
     const auto [p, r] = q.sweep(tau);
-    return scan::segment_plane_distance(p, r, n, a);
+    return segment_plane_distance(p, r, n, a);
   };
 }
 
@@ -339,11 +298,9 @@ double BasicPeriodicDriveFlight<Real, D>::exit_time(const State& s, const PlaneW
   requires(D == 3) {
   // A face of a convex polyhedron has no span: the first plane crossed outward is the exit.
   const Quiver3 q(*this, s);
-  const Vec3 a = w.normal * w.offset;
   const double tau = scan::with_creep(q, [&](auto clearance) {
-    return scan::driven_exit_through_plane(q, w.normal, a, w.slack, t_end - s.t, no_window_passed, everywhere,
-                                           clearance);
-  }, plane_clearance(q, w.normal, a));
+    return scan::scan_windows(q, w.gap_along(q), no_window_passed, everywhere, clearance, t_end - s.t);
+  }, plane_clearance(q, w.normal, Vec3(w.normal * w.offset)));
   return tau == never ? never : s.t + tau;
 }
 
@@ -359,7 +316,7 @@ double BasicPeriodicDriveFlight<Real, D>::exit_time(const State& s, const Triang
     for (int k = 0; k < 3; ++k) {
       const Vec3 pa = a - w.p[k], pb = b - w.p[k];
       const double da = w.edge_normal[k].dot(pa), db = w.edge_normal[k].dot(pb);
-      const double rounding = 8 * scan::eps<double> * (pa.cwiseAbs().sum() + pb.cwiseAbs().sum());
+      const double rounding = 8 * eps<double> * (pa.cwiseAbs().sum() + pb.cwiseAbs().sum());
       const double margin = w.slack + q.delta + rounding;
       if (da > margin && db > margin) return true;
     }
@@ -368,7 +325,7 @@ double BasicPeriodicDriveFlight<Real, D>::exit_time(const State& s, const Triang
   auto in_span = [&](const Vec3& x) { return w.within_span(x); };
   // (The triangle's plane: a lower bound of the distance from the triangle.)
   const double tau = scan::with_creep(q, [&](auto clearance) {
-    return scan::driven_exit_through_plane(q, w.normal, w.p[0], w.slack, t_end - s.t, passes, in_span, clearance);
+    return scan::scan_windows(q, w.gap_along(q), passes, in_span, clearance, t_end - s.t);
   }, plane_clearance(q, w.normal, w.p[0]));
   return tau == never ? never : s.t + tau;
 }
@@ -379,11 +336,10 @@ double BasicPeriodicDriveFlight<Real, D>::exit_time(const State& s, const Sphere
   const Quiver3 q(*this, s);
   auto clearance = [&](double tau) {
     const auto [a, b] = q.sweep(tau);
-    return scan::segment_sphere_distance(a, b, w.center, w.radius);
+    return segment_sphere_distance(a, b, w.center, w.radius);
   };
   const double tau = scan::with_creep(q, [&](auto clearance) {
-    return scan::driven_exit_through_sphere(q, w.center, w.radius, w.focusing, w.slack, t_end - s.t,
-                                            no_window_passed, everywhere, clearance);
+    return scan::scan_windows(q, w.gap_along(q), no_window_passed, everywhere, clearance, t_end - s.t);
   }, clearance);
   return tau == never ? never : s.t + tau;
 }
@@ -397,18 +353,18 @@ template struct DrivenScan<BasicQuiveringWallFlight<long double>>;
 // other dimension.)
 template PeriodicDriveFlight::State PeriodicDriveFlight::start(const BasicState<double>&) const;
 template PeriodicDriveFlight::State PeriodicDriveFlight::advance(const State&, const double&,
-                                                                 const scan::PhaseSample<double>&) const;
+                                                                 const PhaseSample<double>&) const;
 template BasicPeriodicDriveFlight<long double>::State BasicPeriodicDriveFlight<long double>::start(
     const BasicState<long double>&) const;
 template BasicPeriodicDriveFlight<long double>::State BasicPeriodicDriveFlight<long double>::advance(
-    const State&, const long double&, const scan::PhaseSample<long double>&) const;
+    const State&, const long double&, const PhaseSample<long double>&) const;
 template BasicPeriodicDriveFlight<Reference>::State BasicPeriodicDriveFlight<Reference>::start(
     const BasicState<Reference>&) const;
 template BasicPeriodicDriveFlight<Reference>::State BasicPeriodicDriveFlight<Reference>::advance(
-    const State&, const Reference&, const scan::PhaseSample<Reference>&) const;
+    const State&, const Reference&, const PhaseSample<Reference>&) const;
 template PeriodicDriveFlight3::State PeriodicDriveFlight3::start(const State3&) const;
 template PeriodicDriveFlight3::State PeriodicDriveFlight3::advance(const State&, const double&,
-                                                                   const scan::PhaseSample<double>&) const;
+                                                                   const PhaseSample<double>&) const;
 template double PeriodicDriveFlight3::exit_time(const State&, const PlaneWall&, double) const;
 template double PeriodicDriveFlight3::exit_time(const State&, const TriangleWall&, double) const;
 template double PeriodicDriveFlight3::exit_time(const State&, const SphereWall&, double) const;

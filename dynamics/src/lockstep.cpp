@@ -45,7 +45,7 @@ LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flig
   // The drive's numbers as every flight's Quiver computes them.
   DrivenState rest;
   rest.x = rest.v = Vec2::Zero();
-  const scan::Quiver<PeriodicDriveFlight, DrivenState> q(flight, rest);
+  const Quiver<PeriodicDriveFlight, DrivenState> q(flight, rest);
   drive_ = {flight.omega, flight.accel.x(), flight.accel.y(), q.amp_x.x(), q.amp_x.y(), q.amp_v.x(), q.amp_v.y(),
             q.accel_norm, q.inv_omega, q.delta};
   const auto& classes = table.classes();
@@ -99,7 +99,7 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
       continue;
     }
     hit.t = s.t + out.tau[i];
-    hit.state = flight_->advance(s, hit.t, scan::PhaseSample<double>{out.theta[i], out.sin[i], out.cos[i]});
+    hit.state = flight_->advance(s, hit.t, PhaseSample<double>{out.theta[i], out.sin[i], out.cos[i]});
     std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x);
   }
 }

@@ -161,26 +161,22 @@ namespace {
 
 /// The planes' and spheres' first hit by a driven flight, their windows searched in time order
 /// (as in 2-D: DrivenScan::first_hit).
-void first_hit_in_windows(const Table3& table, const scan::Quiver<PeriodicDriveFlight3, DrivenState3>& q,
-                          double t_end, Hit3& best) {
-  using Quiver3 = scan::Quiver<PeriodicDriveFlight3, DrivenState3>;
+void first_hit_in_windows(const Table3& table, const Quiver<PeriodicDriveFlight3, DrivenState3>& q, double t_end,
+                          Hit3& best) {
   const auto& planes = table.planes();
   const auto& spheres = table.spheres();
   const int np = int(planes.size()), ns = int(spheres.size());
   auto never_passes = [](double, double) { return false; };  // no spans to cull by
   auto everywhere = [](const Vec3&) { return true; };
   auto visit = [&](int w, auto&& fn) {
-    if (w < np) {
-      const PlaneWall& p = planes[w];
-      fn(scan::PlaneGap<Quiver3, Vec3>(q, p.normal, Vec3(p.normal * p.offset), p.slack), never_passes, everywhere);
-    } else {
-      const SphereWall& b = spheres[w - np];
-      fn(scan::SphereGap<Quiver3, Vec3>(q, b.center, b.radius, b.focusing, b.slack), never_passes, everywhere);
-    }
+    if (w < np)
+      fn(planes[w].gap_along(q), never_passes, everywhere);
+    else
+      fn(spheres[w - np].gap_along(q), never_passes, everywhere);
   };
   double tau_best = t_end - q.s.t;
   int wall = -1;
-  scan::PhaseSample<double> phase;  // (unused: the hit's state is advanced afresh)
+  PhaseSample<double> phase;  // (unused: the hit's state is advanced afresh)
   scan::first_hit_in_windows(np + ns, visit, tau_best, wall, phase);
   if (wall < 0) return;
   best.t = q.s.t + tau_best;
@@ -218,7 +214,7 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
       }
     });
   } else {
-    const scan::Quiver<Flight, typename Flight::State> q(flight, s);
+    const Quiver<Flight, typename Flight::State> q(flight, s);
     const int walls = int(planes().size() + spheres().size());
     if (q.creeping || walls > scan::windows_in_time_order_walls) {
       for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {

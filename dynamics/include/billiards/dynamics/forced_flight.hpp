@@ -45,6 +45,134 @@ struct BasicDrivenState : BasicState<Real, D> {
 using DrivenState = BasicDrivenState<double>;
 using DrivenState3 = BasicDrivenState<double, 3>;
 
+/// The oscillation segment g ± amp_x, g = s.x + amp_x cos θ_s + u τ the guide at τ after the
+/// state s (guiding velocity u): it holds the position at τ, and the particle sweeps it once
+/// per period.  (Quiver::sweep; and the flights' own, which need no more of a Quiver.)
+template <class State, class V, class Real>
+std::pair<V, V> oscillation_segment(const State& s, const V& u, const V& amp_x, const Real& tau) {
+  const V g = s.x + amp_x * s.cos_phase + u * tau;
+  return {g - amp_x, g + amp_x};
+}
+
+/// The guiding velocity of a driven flight from s in the lab picture, v − (F/mω) sin θ_s: the
+/// free particle's velocity about which the drive oscillates.
+template <class Flight, class State>
+auto guiding_velocity(const Flight& f, const State& s) {
+  using V = std::decay_t<decltype(s.v)>;
+  return V(s.v - drive_amplitudes(f.accel, f.omega).second * s.sin_phase);
+}
+
+
+/// A periodically driven flight from state s as a guiding line plus an oscillation of
+/// amplitude |F|/(mω²): x(τ) = g0 + u τ − (F/mω²) cos θ(τ), τ after the start.  `Flight` has
+/// `accel` (F/m, a 2-D or 3-D vector), `omega` and `Scalar`; `State` has x, v, phase and its
+/// sine and cosine.  The same object describes the quivering-wall picture: there g0 + u τ is
+/// the free particle and (F/mω²) cos θ the walls' displacement, and x(τ) the particle's
+/// position relative to the walls.
+///
+/// It is what the certified scan and the walls' gaps (walls.hpp) know of the flight: the
+/// guiding line (g0, u, `guide`), the bounds on the deviation from it (`delta`, `wobble`,
+/// `along`), on the speed and the acceleration (`speed_bound`, `accel_norm`, `turn_rate`),
+/// the motion (`at`, `motion`) and its `Mark` at a sample (the drive's phase, from which
+/// `shifted_to` gives a nearby time's position without a sine and cosine).
+template <class Flight, class State>
+struct Quiver {
+  using Real = typename Flight::Scalar;
+  using V = std::decay_t<decltype(std::declval<Flight>().accel)>;
+  using Mark = PhaseSample<Real>;
+  const Flight& flight;
+  const State& s;
+  V u, g0;
+  V v0;              // velocity relative to the walls at τ = 0
+  V amp_x, amp_v;    // F/(mω²) and F/(mω): the oscillation's amplitudes
+  Real accel_norm;   // |F|/m
+  Real inv_omega;    // 1/ω
+  Real wobble;       // |F|/(mω) ≥ |v − u|
+  Real speed_bound;  // bound on |v| at any time of this flight
+  Real delta;        // |F|/(mω²) ≥ |oscillation|
+  Real speed;          // |u|
+  Real uu, inv_uu;     // |u|² and 1/|u|² (0 when u = 0)
+  bool creeping;       // the guide moves less than δ per period (see `creep`)
+  Real rounding_rate;  // how fast the rounding of x(τ) grows with τ (see `at`)
+
+  /// The lab picture: s.v is the particle's velocity between fixed walls.
+  Quiver(const Flight& f, const State& st) : Quiver(f, st, guiding_velocity(f, st), st.v) {}
+  /// From the guiding velocity u (the free particle's, in the quivering-wall picture) and the
+  /// velocity relative to the walls at the start; s.x is the position relative to the walls.
+  Quiver(const Flight& f, const State& st, const V& guiding_velocity, const V& relative_velocity)
+      : flight(f), s(st), u(guiding_velocity), v0(relative_velocity) {
+    std::tie(amp_x, amp_v) = drive_amplitudes(f.accel, f.omega);
+    inv_omega = 1 / f.omega;
+    accel_norm = f.accel.norm();
+    g0 = st.x + amp_x * st.cos_phase;
+    uu = u.squaredNorm();
+    inv_uu = uu > 0 ? Real(1 / uu) : Real(0);
+    speed = sqrt(uu);
+    wobble = accel_norm * inv_omega;
+    speed_bound = speed + wobble;
+    delta = accel_norm * inv_omega * inv_omega;
+    creeping = speed * boost::math::constants::two_pi<Real>() < delta * f.omega;  // |u| T < δ
+    rounding_rate = creeping ? speed : speed_bound;
+  }
+  V guide(const Real& tau) const { return g0 + u * tau; }
+  /// Bounds along a unit vector n (a flat wall's normal): |n·F|/m on the second derivative of
+  /// n·x, and |n·F|/(mω), |n·F|/(mω²) on the deviation of n·v and n·x from the guide's.
+  struct Along {
+    Real accel, wobble, deviation;
+  };
+  Along along(const V& n) const {
+    using std::abs;
+    const Real a = abs(n.dot(flight.accel)), w = a * inv_omega;
+    return {a, w, w * inv_omega};
+  }
+  /// The acceleration turns at this rate: |da/dt| ≤ accel_norm · turn_rate (the drive's ω).
+  Real turn_rate() const { return flight.omega; }
+  Real period() const { return boost::math::constants::two_pi<Real>() / flight.omega; }
+  /// The oscillation segment guide(τ) ± amp_x, which holds x(τ) and which the particle sweeps
+  /// once per period.
+  std::pair<V, V> sweep(const Real& tau) const { return oscillation_segment(s, u, amp_x, tau); }
+  /// Position and velocity τ after the start (the closed form of advance()).  Within one
+  /// flight ωτ stays moderate, so a phase in Real is accurate to ~1e-12 rad in double, which
+  /// moves the particle by 1e-12 |F|/(mω²).  A creeping flight may last 10⁸ periods: its phase
+  /// is computed as advance() does (advance_phase), since the rounding of ωτ, times the speed
+  /// |F|/(mω), would widen the scan's tolerance band (`rounding_rate`) beyond the guide's
+  /// approach to the wall per period, and a touch near a turning point would count periods
+  /// early (measured: 1-4 periods of 1.8e9 before, with the phase in long double).
+  std::pair<V, V> at(const Real& tau) const {
+    const auto m = motion(tau);
+    return {m.x, m.v};
+  }
+  /// Position, velocity and acceleration (F/m) cos θ τ after the start.
+  struct Motion {
+    V x, v, a;
+    Real th, sin_th, cos_th;  // the drive's phase θ there (not reduced)
+  };
+  Motion motion(const Real& tau) const {
+    if (tau == 0) return {s.x, v0, flight.accel * s.cos_phase, Real(s.phase), s.sin_phase, s.cos_phase};
+    const Real th = phase_at(tau);
+    const auto [sn, c] = sin_cos(th);
+    return {position(tau, c), u + amp_v * sn, flight.accel * c, th, sn, c};
+  }
+  /// The drive's phase θ τ after the start, as `motion` computes it.
+  Real phase_at(const Real& tau) const {
+    return creeping ? Real(reduce_phase(advance_phase(s.phase, flight.omega, tau))) : Real(Real(s.phase) + flight.omega * tau);
+  }
+  /// The position τ after the start, where cos θ = cos_th.
+  V position(const Real& tau, const Real& cos_th) const { return g0 + u * tau - amp_x * cos_th; }
+  /// The position x at τ and the mark there from the mark of a sample at a nearby time (the
+  /// drive's phase shifted by ω Δτ: PhaseSample::shifted); false when τ is too far from it.
+  bool shifted_to(const Mark& from, const Real& tau, V& x, Mark& at) const {
+    using std::abs;
+    const Real th = phase_at(tau), h = th - from.theta;
+    if (!(abs(h) <= Real(Mark::h_max))) return false;
+    const auto [sn, cs] = from.shifted(h);
+    x = position(tau, cs);
+    at = {th, sn, cs};
+    return true;
+  }
+};
+
+
 /// The exit-time searches of one driven flight (lab or quivering walls) from one state: the
 /// guiding line and the bounds that every wall's search starts from are computed once per
 /// flight, not once per wall (`collision` asks the flight for it with `scan_from(s)`).  It
@@ -52,7 +180,7 @@ using DrivenState3 = BasicDrivenState<double, 3>;
 template <class Flight>
 struct DrivenScan {
   using Real = typename Flight::Scalar;
-  scan::Quiver<Flight, BasicDrivenState<Real>> quiver;
+  Quiver<Flight, BasicDrivenState<Real>> quiver;
   Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const;
@@ -80,12 +208,12 @@ struct BasicPeriodicDriveFlight {
   /// Appendix B: v(t) = v_s + (F/mω)[sin θ(t) − sin θ_s],
   /// x(t) = x_s + [v_s − (F/mω) sin θ_s](t − t_s) − (F/mω²)[cos θ(t) − cos θ_s];
   /// sin θ(t) and cos θ(t) from `near` when it is known (a sample of a root search).
-  State advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near = {}) const;
+  State advance(const State& s, const Real& t, const PhaseSample<Real>& near = {}) const;
   DrivenScan<BasicPeriodicDriveFlight> scan_from(const State& s) const requires(D == 2) { return {{*this, s}}; }
   /// The oscillation segment guide ± F/(mω²) that holds the position at time t of the flight
   /// from s (no sine or cosine: the ensemble's every-flight check looks it up first).
   std::pair<VecN<Real, D>, VecN<Real, D>> sweep(const State& s, const Real& t) const {
-    return scan::oscillation_segment(s, scan::guiding_velocity(*this, s), drive_amplitudes(accel, omega).first,
+    return oscillation_segment(s, guiding_velocity(*this, s), drive_amplitudes(accel, omega).first,
                                      Real(t - s.t));
   }
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2) {
@@ -127,7 +255,7 @@ struct BasicQuiveringWallFlight {
   /// and ẏ is the lab velocity).
   State start(const BasicState<Real>& s) const { return BasicPeriodicDriveFlight<Real>{accel, omega, phase0}.start(s); }
   /// y(t) = y_s + ẏ (t − t_s); x = y − d(t) (`near` as for the lab flight).
-  State advance(const State& s, const Real& t, const scan::PhaseSample<Real>& near = {}) const;
+  State advance(const State& s, const Real& t, const PhaseSample<Real>& near = {}) const;
   /// ḋ, the walls' velocity at the state's time.
   Vec2T<Real> wall_velocity(const State& s) const { return -drive_amplitudes(accel, omega).second * s.sin_phase; }
   /// The lab flight's scan, seen from the walls: guiding velocity ẏ, velocity relative to the
@@ -137,7 +265,7 @@ struct BasicQuiveringWallFlight {
   }
   /// As for the lab flight (the position relative to the walls lies on it).
   std::pair<Vec2T<Real>, Vec2T<Real>> sweep(const State& s, const Real& t) const {
-    return scan::oscillation_segment(s, s.v, drive_amplitudes(accel, omega).first, Real(t - s.t));
+    return oscillation_segment(s, s.v, drive_amplitudes(accel, omega).first, Real(t - s.t));
   }
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const {
     return scan_from(s).exit_time(w, t_end);

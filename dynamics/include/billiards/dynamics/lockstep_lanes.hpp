@@ -39,7 +39,7 @@ struct Drive {
 };
 
 /// The flights of up to `lanes` particles, lane by lane (the kernel derives the rest of each
-/// flight's scan::Quiver as its constructor does).
+/// flight's Quiver as its constructor does).
 struct alignas(64) Flights {
   double sx[lanes], sy[lanes];                                    // the state's position
   double vx[lanes], vy[lanes];                                    // and velocity

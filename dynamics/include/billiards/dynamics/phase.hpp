@@ -1,5 +1,6 @@
-// The phase of the periodic drive, θ = ω t + phase: its type, its reduction to [0, 2π), and
-// its advance over long flights (internal to dynamics: the flights and the certified scan).
+// The phase of the periodic drive, θ = ω t + phase: its type, its reduction to [0, 2π), its
+// advance over long flights, its sine and cosine, and its samples in a root search (internal to
+// dynamics: the driven flights).
 #pragma once
 
 #include "billiards/dynamics/phase_constants.hpp"
@@ -181,5 +182,38 @@ std::pair<Real, Real> sin_cos(const Real& theta) {
   }
   return {sin(theta), cos(theta)};
 }
+
+/// The drive's phase θ (as computed in Real, not reduced) and its sine and cosine at one
+/// sample of a root search: the state at the root, a polishing step away, is had from them
+/// without another sine and cosine.  (Not for creeping flights, whose samples reduce θ.)
+template <class Real>
+struct PhaseSample {
+  Real theta = never, sin = 0, cos = 1;
+  /// The farthest shift `shifted` serves.
+  static constexpr double h_max = 0.05;
+  bool known() const { return theta != never; }
+  /// Is the phase `precise` (in the phase type) within h_max of θ, not reduced?  (A flight of
+  /// 2²⁰ rad and more has its phase partly reduced by advance_phase.)
+  bool near(const PhaseOf<Real>& precise) const {
+    using std::abs;
+    return abs(Real(precise - PhaseOf<Real>(theta))) <= Real(h_max);
+  }
+  /// sin and cos of `precise` (θ + h, near θ): which corrects the last step of a root search
+  /// and the rounding of θ in Real.
+  std::pair<Real, Real> at(const PhaseOf<Real>& precise) const { return shifted(Real(precise - PhaseOf<Real>(theta))); }
+  /// sin and cos of θ + h, |h| ≤ h_max, by the angle-sum formulas, with sin h and cos h − 1 from
+  /// their Taylor series (remainders below h⁹/9! = 5.4e-18): a fifth of a sine and cosine.
+  /// The series' ratios are multiplied by their reciprocals, not divided: six divisions sat on
+  /// the way from a root to the hit's state (the reciprocals' rounding, ~1e-16 of terms below
+  /// z/6 ≈ 4e-4, is far below the remainder).
+  std::pair<Real, Real> shifted(const Real& h) const {
+    const Real z = h * h;
+    const Real sin_h = h * (1 - z * Real(Real(1) / 6) * (1 - z * Real(Real(1) / 20) * (1 - z * Real(Real(1) / 42))));
+    const Real cos_h_1 =
+        -z * Real(0.5) * (1 - z * Real(Real(1) / 12) * (1 - z * Real(Real(1) / 30) * (1 - z * Real(Real(1) / 56))));
+    return {sin + (sin * cos_h_1 + cos * sin_h), cos + (cos * cos_h_1 - sin * sin_h)};
+  }
+};
+
 
 }  // namespace billiards::dynamics

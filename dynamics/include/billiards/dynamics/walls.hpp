@@ -10,7 +10,10 @@
 // normal; within_span; contact (the hit point projected onto the curve, and the normal
 // there); curvature_at (signed, > 0 focusing); distance and may_be_near (for the independent
 // point-in-region test); crossings (its ray-crossing count); and `slack`, its rounding
-// tolerance in distance units.
+// tolerance in distance units.  For the certified scan of a driven flight, segments and arcs
+// also supply `gap_along(q)`, their gap seen along the flight q (PlaneGap, SphereGap below: f,
+// its rounding, the windows in which it can vanish, the sign of f'), and `may_meet_span(p, q,
+// pad)`, whether a point near the segment [p, q] can be within the span.
 //
 // Span tests are CLOSED and slightly EXTENDED (by `slack`, a few hundred ulps of the
 // coordinates in the scalar type's precision): a crossing computed just past the end of a
@@ -19,6 +22,7 @@
 // joint point bit for bit.
 #pragma once
 
+#include "billiards/dynamics/certified_scan.hpp"
 #include "billiards/geometry/elliptic_arc.hpp"
 #include "billiards/geometry/pieces.hpp"
 
@@ -42,6 +46,236 @@ auto point_segment_distance(const V& x, const V& p, const V& q) {
   const Real s = dd > 0 ? std::clamp(Real((x - p).dot(d) / dd), Real(0), Real(1)) : Real(0);
   return Real((x - p - s * d).norm());
 }
+
+/// Distance from the segment [p, q] to the sphere (circle) of centre c and radius r: the
+/// segment's distances from c fill [nearest, farthest].
+template <class V, class Real>
+Real segment_sphere_distance(const V& p, const V& q, const V& c, const Real& r) {
+  using std::max;
+  const Real nearest = point_segment_distance(c, p, q), farthest = max((p - c).norm(), (q - c).norm());
+  return max({Real(nearest - r), Real(r - farthest), Real(0)});
+}
+
+/// Distance from the segment [p, q] to the plane through a with unit normal n (a lower bound
+/// for any piece of it).
+template <class V, class Real = typename V::Scalar>
+Real segment_plane_distance(const V& p, const V& q, const V& n, const V& a) {
+  using std::abs;
+  using std::min;
+  const Real fp = n.dot(p - a), fq = n.dot(q - a);
+  return fp * fq <= 0 ? Real(0) : min(abs(fp), abs(fq));
+}
+
+namespace scan {
+
+// The walls' gaps along a flight, in 2-D and 3-D: the wall geometry of the certified scan.
+
+/// How far beyond the line (2-D) or plane (3-D) through `a` with outward unit normal `n` the
+/// flight `q` is: f = n·(x − a), which lies within B (q.along(n): |n·F|/(mω²) for the drive)
+/// of its guiding part g_off + nu τ; `q` is a flight seen as a guiding line with bounded
+/// deviation (forced_flight.hpp's Quiver).  A gap gives a scan of one wall everything it needs:
+/// f and its rounding, the windows (the only times at which f can vanish) and a bound on the
+/// sign of f' in a window.
+template <class Q, class V>
+struct PlaneGap {
+  using Real = typename Q::Real;
+  const Q& q;
+  V n, a;
+  Real slack, n_a, n_w, B, nu, g_off;  // n_a, n_w, B: q.along(n)
+  Real tol0, tol1;  // the rounding level of f at τ is tol0 + tol1 τ
+
+  PlaneGap(const Q& q_, const V& n_, const V& a_, const Real& slack_) : q(q_), n(n_), a(a_), slack(slack_) {
+    using std::abs;
+    const auto bounds = q.along(n);
+    n_a = bounds.accel;
+    n_w = bounds.wobble;
+    B = bounds.deviation;
+    nu = n.dot(q.u);
+    g_off = n.dot(q.g0 - a);
+    tol0 = slack + 8 * eps<Real> * (abs(g_off) + B);
+    // |f'| ≤ |nu| + |n·F|/(mω): the band covers f's change over the scan's step floor.
+    tol1 = 8 * eps<Real> * (abs(nu) + n_w);
+  }
+  /// The rounding level of f at τ.
+  Real tolerance(const Real& tau) const { return tol0 + tol1 * tau; }
+  Sample<Real, V> sample(const Real& tau) const {
+    const auto [x, v] = q.at(tau);
+    return {n.dot(x - a), n.dot(v), n_a, never, x};
+  }
+  Taylor<Real, V, typename Q::Mark> taylor(const Real& tau) const {
+    const auto m = q.motion(tau);
+    return {n.dot(m.x - a), n.dot(m.v), n.dot(m.a), m.x, band(tau), {m.th, m.sin_th, m.cos_th}};
+  }
+  /// The level below which |f| (as `taylor` gives it) is within the rounding band at τ.
+  Real band(const Real& tau) const { return tolerance(tau); }
+  /// The rounding of f itself at τ (the band without the walls' slack): a root known to that
+  /// level is as good as a polished one.
+  Real rounding(const Real& tau) const { return tolerance(tau) - slack; }
+  /// A bound on |f'''| = |n·F ω sin θ|/m.
+  Real jerk_bound(const Window<Real>&) const { return n_a * q.turn_rate(); }
+  /// First time ≥ τ at which the guide comes within the margin (B and rounding) of the wall, or
+  /// +∞: before it f cannot vanish.
+  Real window_start(const Real& tau) const {
+    const Real margin = B + tolerance(tau), guide = g_off + nu * tau;
+    return guide < 0 ? reach_linear(tau, guide, nu, Real(-margin)) : reach_linear(tau, Real(-guide), Real(-nu), Real(-margin));
+  }
+  /// When the guide, from the window's start, is twice the margin away (so that the scan leaves
+  /// the window for good), or tau_end.
+  Real window_end(const Real& start, const Real& tau_end) const {
+    using std::min;
+    if (nu == 0) return start;
+    const Real margin = B + tolerance(start), guide = g_off + nu * start;
+    return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
+  }
+  /// The window until `horizon` (the guide is linear: one at most) into out; returns their
+  /// number.
+  int windows(const Real& horizon, Window<Real>* out) const {
+    using std::abs;
+    using std::min;
+    if (nu == 0) return clip_window(0, out, Real(0), horizon, Real(B + tolerance(horizon)), false, horizon);
+    const Real m = B + tolerance(margin_time(horizon, [&] {
+                     return window_horizon(Real(0), Real(abs(g_off) + 2 * B), tol0, tol1, abs(nu));
+                   }));
+    const Real inv_nu = 1 / nu, from = (-2 * m - g_off) * inv_nu, to = (2 * m - g_off) * inv_nu;  // the guide at ∓2m
+    return nu > 0 ? clip_window(0, out, from, to, m, true, horizon) : clip_window(0, out, to, from, m, false, horizon);
+  }
+  /// +1 when f' > 0 throughout the window (f then crosses zero there at most once, upward), −1
+  /// when f' < 0 (no collision), 0 when the bounds cannot tell: f' = nu + n·(F/mω) sin θ.
+  int slope_sign(const Window<Real>&) const {
+    const Real wobble = n_w * (1 + 16 * eps<Real>) + 8 * eps<Real> * q.speed;
+    return nu > wobble ? 1 : nu < -wobble ? -1 : 0;
+  }
+};
+
+/// The same for the circle (2-D) or sphere (3-D) of centre c and radius r, the region inside it
+/// when `focusing`: f = ±(|x − c| − r), where |x − c| lies within δ of the guide's distance
+/// from c.
+template <class Q, class V>
+struct SphereGap {
+  using Real = typename Q::Real;
+  const Q& q;
+  V c;
+  Real r, sign, slack;
+  Real tol0, tol1;  // the rounding level of f at τ is tol0 + tol1 τ
+
+  SphereGap(const Q& q_, const V& c_, const Real& r_, bool focusing, const Real& slack_)
+      : q(q_), c(c_), r(r_), sign(focusing ? 1 : -1), slack(slack_),
+        // (|x − c|₁ + r bounds |x − c| + r without a square root.)
+        tol0(slack + 8 * eps<Real> * ((q.s.x - c).template lpNorm<1>() + r + q.delta)),
+        tol1(8 * eps<Real> * q.rounding_rate) {}
+  Real tolerance(const Real& tau) const { return tol0 + tol1 * tau; }
+  Sample<Real, V> sample(const Real& tau) const {
+    const auto [x, v] = q.at(tau);
+    const V p = x - c;
+    const Real rho = p.norm(), f = sign * (rho - r);
+    if (rho < r / 2) {
+      // Nearer the centre than the wall, f'' is unbounded (at the centre p̂·v is 0/0), but
+      // |f'| ≤ |v|: the Lipschitz bound |f(τ + s) − f(τ)| ≤ |v| s + A s²/2, as a sample moving
+      // towards zero at |v| with M = A, steps through safely, ~|f|/|v| at a time.
+      const Real speed = v.norm();
+      return {f, f < 0 ? speed : Real(-speed), q.accel_norm, never, x};
+    }
+    // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
+    const Real Vb = q.speed_bound;
+    return {f, sign * p.dot(v) / rho, 2 * Vb * Vb / rho + q.accel_norm, rho / (2 * Vb), x};
+  }
+  /// ±(|p|² − r²), free of square roots and divisions (which lengthened each iteration of the
+  /// root search by a third): |p|² − r² = (|p| − r)(|p| + r), and |p| − r ≤ tol is certain when
+  /// ||p|² − r²| ≤ 2 tol (r − tol).
+  Taylor<Real, V, typename Q::Mark> taylor(const Real& tau) const {
+    const auto m = q.motion(tau);
+    const V p = m.x - c;
+    return {sign * (p.squaredNorm() - r * r), 2 * sign * p.dot(m.v), 2 * sign * (m.v.squaredNorm() + p.dot(m.a)), m.x,
+            band(tau), {m.th, m.sin_th, m.cos_th}};
+  }
+  Real band(const Real& tau) const {
+    const Real tol = tolerance(tau);
+    return 2 * tol * (r - tol);
+  }
+  Real rounding(const Real& tau) const { return 2 * r * (tolerance(tau) - slack); }
+  /// A bound on the third derivative of ±(|p|² − r²), 2(3 v·a + p·ȧ), in the window w, where
+  /// |p| ≤ r + 2m + δ, |v| ≤ V, |a| ≤ A and |ȧ| ≤ Aω.
+  Real jerk_bound(const Window<Real>& w) const {
+    return 2 * q.accel_norm * (3 * q.speed_bound + (r + 2 * w.margin + q.delta) * q.turn_rate());
+  }
+  Real window_start(const Real& tau) const {
+    using std::max;
+    const V g = q.guide(tau) - c;
+    const Real margin = q.delta + tolerance(tau);
+    return g.squaredNorm() < r * r ? reach_radius(tau, g, q.u, max(Real(0), Real(r - margin)), true)
+                                   : reach_radius(tau, g, q.u, Real(r + margin), false);
+  }
+  Real window_end(const Real& start, const Real& tau_end) const {
+    using std::max;
+    using std::min;
+    const V g = q.guide(start) - c;
+    const Real margin = q.delta + tolerance(start);
+    return min({reach_radius(start, g, q.u, Real(r + 2 * margin), true),
+                reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
+  }
+  /// The windows until `horizon` into out; returns their number.  The guide's distance from c
+  /// is convex in τ: the guide is within r ± 2m of c in one interval, or in two when it
+  /// passes inside r − 2m.
+  int windows(const Real& horizon, Window<Real>* out) const {
+    using std::max;
+    using std::min;
+    using std::sqrt;
+    const V q0 = q.g0 - c;
+    const Real b = q0.dot(q.u), cc = q0.squaredNorm(), uu = q.uu;
+    if (!(uu > 0)) return clip_window(0, out, Real(0), horizon, Real(q.delta + tolerance(horizon)), false, horizon);
+    // Most walls are out of reach: the guide misses the sphere, or moves away from it, even
+    // with the margin at the horizon (no smaller than any margin below).
+    const Real reach = r + 2 * (q.delta + tolerance(horizon)), k_reach = cc - reach * reach;
+    if (k_reach > 0 && (b >= 0 || b * b < uu * k_reach)) return 0;
+    const Real m = q.delta + tolerance(margin_time(horizon, [&] {
+                     return window_horizon(Real(-b * q.inv_uu), Real(r + 2 * q.delta), tol0, tol1, q.speed);
+                   }));
+    // Times at which the guide is at distance ρ from c: the roots of uu τ² + 2bτ + cc − ρ²,
+    // each from its stable form; false when it never is.
+    auto at_distance = [&](const Real& rho, Real& t1, Real& t2) {
+      const Real k = cc - rho * rho, D = b * b - uu * k;
+      if (!(D >= 0)) return false;
+      const Real root = sqrt(D);
+      if (b <= 0) {
+        t2 = (root - b) * q.inv_uu;
+        t1 = root - b > 0 ? Real(k / (root - b)) : Real(0);  // (0/0 for a tangent at τ = 0)
+      } else {
+        t1 = -(b + root) * q.inv_uu;
+        t2 = -k / (b + root);
+      }
+      return true;
+    };
+    Real t1, t2, t3, t4;
+    if (!at_distance(Real(r + 2 * m), t1, t2)) return 0;
+    const bool outside_is_below = sign < 0;  // beyond a dispersing circle's wall is its inside
+    const Real inner = r - 2 * m;
+    if (!(inner > 0) || !at_distance(inner, t3, t4))
+      return clip_window(0, out, t1, t2, m, outside_is_below, horizon);
+    const int n = clip_window(0, out, t1, t3, m, outside_is_below, horizon);
+    return clip_window(n, out, t4, t2, m, !outside_is_below, horizon);
+  }
+  /// f' = ±p̂·v.  In the window the guide q stays within 2 margins m of the sphere, p = q + o
+  /// with |o| ≤ δ, and v = u + w with |w| ≤ |F|/(mω); so |p̂·v − q̂·u| ≤ |F|/(mω) + 2δ V/|p|,
+  /// and q̂·u = (q·u)/|q|, whose numerator grows linearly in τ, is bounded by its values at the
+  /// window's ends.
+  int slope_sign(const Window<Real>& w) const {
+    using std::isfinite;
+    const Real m2 = 2 * w.margin, inner = r - m2, outer = r + m2;
+    if (!isfinite(w.end) || !(inner - q.delta > 0)) return 0;
+    const V q0 = q.g0 - c;
+    const Real qu0 = q0.dot(q.u);
+    const Real qs = qu0 + q.uu * w.start, qe = qu0 + q.uu * w.end;
+    const Real wobble = q.wobble + 2 * q.delta * q.speed_bound / (inner - q.delta);
+    // q̂·u > wobble throughout (outward) when qs/|q| > wobble, as |q| ≤ outer; < −wobble
+    // (inward) likewise at the end; compared without dividing, with the rounding of q·u.
+    const Real threshold = wobble * outer + 16 * eps<Real> * (q0.template lpNorm<1>() * q.u.template lpNorm<1>() +
+                                                               q.uu * w.end + q.speed_bound * outer);
+    const bool outward = qs > threshold, inward = qe < -threshold;
+    return sign > 0 ? (outward ? 1 : inward ? -1 : 0) : (inward ? 1 : outward ? -1 : 0);
+  }
+};
+
+}  // namespace scan
 
 /// Relative slack of span tests, in units of the coordinate scale.
 template <class Real>
@@ -100,6 +334,19 @@ struct BasicSegmentWall {
     return up ? (side > 0 ? 1 : 0) : (side < 0 ? -1 : 0);
   }
   Real gap(const V& p) const { return normal.dot(p - a); }
+  template <class Q>
+  scan::PlaneGap<Q, V> gap_along(const Q& q) const { return {q, normal, a, slack}; }
+  /// Can a point within `pad` of the segment [p, q] lie in the span?  The span is an
+  /// intersection of half-planes, whose linear functions take their extremes over [p, q] at p
+  /// or q; false only when certainly not.
+  bool may_meet_span(const V& p, const V& q, const Real& pad) const {
+    using std::abs;
+    using std::max;
+    using std::min;
+    const Real sp = (p - a).dot(dir), sq = (q - a).dot(dir);
+    const Real margin = (slack + pad) * dir.norm() + 8 * scan::eps<Real> * (1 + abs(sp) + abs(sq));
+    return max(sp, sq) >= -margin && min(sp, sq) <= 1 + margin;
+  }
   Real curvature_at(const V&) const { return 0; }
   V normal_at(const V&) const { return normal; }
   std::pair<V, V> contact(const V& p) const { return {project(p), normal}; }
@@ -197,6 +444,20 @@ struct BasicArcWall {
   Real gap(const V& p) const {
     const Real d = (p - center).norm() - radius;
     return focusing ? d : Real(-d);
+  }
+  template <class Q>
+  scan::SphereGap<Q, V> gap_along(const Q& q) const { return {q, center, radius, focusing, slack}; }
+  /// As for segments; the span of an arc longer than a half circle is a union of half-planes.
+  bool may_meet_span(const V& p, const V& q, const Real& pad) const {
+    using std::max;
+    using std::min;
+    if (full) return true;
+    const V a = p - center, b = q - center;
+    // (|·|₁ ≥ |·| bounds the rounding of the cross products without a square root.)
+    const Real margin = radius * (slack + pad) + 16 * scan::eps<Real> * radius * (a.template lpNorm<1>() + b.template lpNorm<1>());
+    if (ccw_extent <= geometry::pi)
+      return max(cross(from, a), cross(from, b)) >= -margin && max(cross(a, to), cross(b, to)) >= -margin;
+    return !(min(cross(to, a), cross(to, b)) > margin && min(cross(a, from), cross(b, from)) > margin);
   }
   /// Signed curvature seen from the region (geometry::Arc::curvature).
   Real curvature_at(const V&) const { return (focusing ? Real(1) : Real(-1)) / radius; }

@@ -4,7 +4,8 @@
 // normal; within_span; contact (the hit point, as computed, and the normal there); box, a
 // bounding box (lo, hi) of the wall and its slack; curvature_at (signed, > 0 focusing: 1/r
 // in every direction for a sphere seen from inside, −1/r from outside, 0 for flat walls); and
-// `slack`, its rounding tolerance in distance units.
+// `slack`, its rounding tolerance in distance units; and, for the certified scan of a driven
+// flight, `gap_along(q)`, the gap of its plane or sphere seen along the flight q (walls.hpp).
 //
 // Straight flights' exit times through them (`straight_exit_time`, walls3.cpp) follow the
 // rules of the 2-D ones:
@@ -27,6 +28,7 @@
 #pragma once
 
 #include "billiards/dynamics/state.hpp"
+#include "billiards/dynamics/walls.hpp"
 #include "billiards/geometry3/region3.hpp"
 
 #include <array>
@@ -48,6 +50,8 @@ struct PlaneWall {
   double offset;
   double slack;
   double gap(const Vec3& x) const { return normal.dot(x) - offset; }
+  template <class Q>
+  scan::PlaneGap<Q, Vec3> gap_along(const Q& q) const { return {q, normal, Vec3(normal * offset), slack}; }
   Vec3 normal_at(const Vec3&) const { return normal; }
   bool within_span(const Vec3&) const { return true; }
   std::pair<Vec3, Vec3> contact(const Vec3& x) const { return {x, normal}; }
@@ -78,6 +82,9 @@ struct TriangleWall {
     return true;
   }
   double gap(const Vec3& x) const { return normal.dot(x - p[0]); }
+  /// (The triangle's plane: a lower bound of the distance from the triangle.)
+  template <class Q>
+  scan::PlaneGap<Q, Vec3> gap_along(const Q& q) const { return {q, normal, p[0], slack}; }
   Vec3 normal_at(const Vec3&) const { return normal; }
   std::pair<Vec3, Vec3> contact(const Vec3& x) const { return {x, normal}; }
   std::pair<Vec3, Vec3> box() const {
@@ -100,6 +107,8 @@ struct SphereWall {
     const double d = (x - center).norm() - radius;
     return focusing ? d : -d;
   }
+  template <class Q>
+  scan::SphereGap<Q, Vec3> gap_along(const Q& q) const { return {q, center, radius, focusing, slack}; }
   bool within_span(const Vec3&) const { return true; }
   std::pair<Vec3, Vec3> contact(const Vec3& x) const { return {x, normal_at(x)}; }
   std::pair<Vec3, Vec3> box() const {
