@@ -46,13 +46,13 @@ TEST_CASE("loader errors name file, line and problem") {
   CHECK_THAT(error_of("holes:\n  - circle: {center: [0, 0], radius: 1}\n"),
              Catch::Contains("bad.yaml:1: a shape file needs 'boundary'"));
   CHECK_THAT(error_of("dimension: 4\nboundary:\n  circle: {center: [0, 0], radius: 1}\n"),
-             Catch::Contains("bad.yaml:1: only dimension 2"));
+             Catch::Contains("bad.yaml:1: 'dimension' is 2 (the default) or 3"));
   // A mapping where the name should be (a fuzz finding: its conversion threw).
   CHECK_THAT(error_of("name:\n  a: 1\nboundary:\n  circle: {center: [0, 0], radius: 1}\n"),
              Catch::Contains("bad.yaml:2: 'name' is a single word or phrase"));
   // A tagged mapping where the dimension should be (a fuzz finding: its conversion threw).
   CHECK_THAT(error_of("dimension: !=parameters:\n  R: 1\nboundary:\n  circle: {center: [0, 0], radius: 1}\n"),
-             Catch::Contains("bad.yaml:1: only dimension 2"));
+             Catch::Contains("bad.yaml:1: 'dimension' is 2 (the default) or 3"));
 }
 
 TEST_CASE("a 'near' point picks one of two circle intersections") {

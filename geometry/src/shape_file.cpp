@@ -312,21 +312,12 @@ Shape parse_shape(const std::string& yaml_text, const std::string& name, const O
   const YAML::Node doc = load_yaml(yaml_text, name);
   Expressions expr;
   Reader r(name, expr);
-  if (!doc.IsMap()) throw InputError(name, 1, "a shape file is a YAML mapping");
-  r.expect_keys(doc, {"name", "dimension", "parameters", "boundary", "holes", "exits"}, "a shape file");
-  if (doc["dimension"] && !(doc["dimension"].IsScalar() && doc["dimension"].Scalar() == "2"))
-    r.fail(doc["dimension"], "only dimension 2 is supported so far");
-  if (const YAML::Node params = doc["parameters"]) r.define_parameters(params, overrides);
-  if (const auto unknown = expr.unused(overrides); !unknown.empty())
-    throw InputError(name, 0, "--set names '" + unknown.front() + "', which is not a parameter of this shape");
-
   Shape shape;
+  Region2& region = shape.region;
+  region.name = r.shape_header(doc, 2, overrides);
+  region.origin = {name, 1};
   shape.parameters = expr.values();
   shape.description = leading_comment(yaml_text);
-  Region2& region = shape.region;
-  region.origin = {name, 1};
-  if (doc["name"] && !doc["name"].IsScalar()) r.fail(doc["name"], "'name' is a single word or phrase");
-  region.name = doc["name"] ? doc["name"].Scalar() : std::filesystem::path(name).stem().string();
   const LoopReader loops(r);
   region.outer = loops.read(r.required(doc, "boundary", "a shape file"), false);
   if (const YAML::Node holes = doc["holes"]) {

@@ -72,6 +72,21 @@ std::string read_input_file(const std::string& path, const std::string& what) {
   return text.str();
 }
 
+std::string YamlReader::shape_header(const YAML::Node& doc, int dimension, const Overrides& overrides) const {
+  if (!doc.IsMap()) throw InputError(file_, 1, "a shape file is a YAML mapping");
+  const std::string what = dimension == 3 ? "a 3-D shape file" : "a shape file";
+  expect_keys(doc, {"name", "dimension", "parameters", "boundary", "holes", "exits"}, what);
+  const YAML::Node dim = dimension == 3 ? required(doc, "dimension", what) : doc["dimension"];
+  if (dim && !(dim.IsScalar() && dim.Scalar() == std::to_string(dimension)))
+    fail(dim, dimension == 3 ? "a 3-D shape file has 'dimension: 3'" : "'dimension' is 2 (the default) or 3");
+  if (const YAML::Node params = doc["parameters"]) define_parameters(params, overrides);
+  if (const auto unknown = expr_.unused(overrides); !unknown.empty())
+    throw InputError(file_, 0, "--set names '" + unknown.front() + "', which is not a parameter of this shape");
+  const YAML::Node name = doc["name"];
+  if (name && !name.IsScalar()) fail(name, "'name' is a single word or phrase");
+  return name ? name.Scalar() : std::filesystem::path(file_).stem().string();
+}
+
 YAML::Node load_yaml(const std::string& text, const std::string& name) {
   check_utf8(text, name);
   YAML::Node doc;

@@ -103,21 +103,12 @@ Shape3 parse_shape3(const std::string& yaml_text, const std::string& name, const
   const YAML::Node doc = load_yaml(yaml_text, name);
   Expressions expr;
   YamlReader r(name, expr);
-  if (!doc.IsMap()) throw InputError(name, 1, "a shape file is a YAML mapping");
-  r.expect_keys(doc, {"name", "dimension", "parameters", "boundary", "holes", "exits"}, "a 3-D shape file");
-  const YAML::Node dim = r.required(doc, "dimension", "a 3-D shape file");
-  if (!dim.IsScalar() || dim.Scalar() != "3") r.fail(dim, "a 3-D shape file has 'dimension: 3'");
-  if (const YAML::Node params = doc["parameters"]) r.define_parameters(params, overrides);
-  if (const auto unknown = expr.unused(overrides); !unknown.empty())
-    throw InputError(name, 0, "--set names '" + unknown.front() + "', which is not a parameter of this shape");
-
   Shape3 shape;
+  Region3& region = shape.region;
+  region.name = r.shape_header(doc, 3, overrides);
+  region.origin = {name, 1};
   shape.parameters = expr.values();
   shape.description = leading_comment(yaml_text);
-  Region3& region = shape.region;
-  region.origin = {name, 1};
-  if (doc["name"] && !doc["name"].IsScalar()) r.fail(doc["name"], "'name' is a single word or phrase");
-  region.name = doc["name"] ? doc["name"].Scalar() : std::filesystem::path(name).stem().string();
   const Reader3 reader(r, mesh_dir.empty() ? std::filesystem::path(name).parent_path() : std::filesystem::path(mesh_dir));
   region.outer = reader.boundary(r.required(doc, "boundary", "a shape file"));
   if (const YAML::Node holes = doc["holes"]) {

@@ -80,6 +80,10 @@ class YamlReader {
       expr_.define(kv.first.as<std::string>(), kv.second.Scalar(), file_, line(kv.first), overrides);
     }
   }
+  /// What a shape file holds besides its walls, read alike in 2-D and 3-D: a mapping of the
+  /// shape keys only, whose `dimension` is `dimension` (2 when absent), its parameters (each
+  /// --set naming one of them) and its `name`.  Returns the name (the file's stem when absent).
+  std::string shape_header(const YAML::Node& doc, int dimension, const Overrides& overrides) const;
   geometry::Vec2 point(const YAML::Node& n) const { return vector(n, 2); }
   /// A vector of `size` (2 or 3) numbers.
   Eigen::VectorXd vector(const YAML::Node& n, int size) const {
