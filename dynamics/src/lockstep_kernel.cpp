@@ -101,8 +101,23 @@ LANES_ARITHMETIC(&)
 LANES_ARITHMETIC(|)
 LANES_ARITHMETIC(^)
 #undef LANES_ARITHMETIC
-// Comparisons as C's: false where an operand is NaN, except != (true there).  (Highway's != is
-// false there: x != y is ~(x == y) here.)
+// Comparisons as C's: false where an operand is NaN, except != (true there).  On x86, GCC's
+// vector comparisons and selections on Highway's registers: from them GCC keeps a comparison's
+// result in a mask register up to the selection (AVX-512), where Highway's VecFromMask and
+// MaskFromVec, opaque to it, convert to a vector and back on the search's critical path (the
+// kernel was 15-40% slower).  Elsewhere Highway's (whose != is false on NaN: ~(x == y) here).
+#if HWY_ARCH_X86 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
+#define LANES_COMPARISON(op, lane)                                            \
+  template <class V>                                                         \
+  LANES Mask operator op(Parts<V> x, Parts<V> y) {                           \
+    Mask r;                                                                  \
+    EACH_VECTOR r.v[k].raw = decltype(r.v[k].raw)(x.v[k].raw op y.v[k].raw); \
+    return r;                                                                \
+  }                                                                          \
+  template <class V, Scalar S>                                               \
+  LANES Mask operator op(Parts<V> x, S y) { return x op splat_as<V>(hn::TFromV<V>(y)); }
+#define LANES_SELECT(m, a, b) r.v[k].raw = m.v[k].raw ? a.v[k].raw : b.v[k].raw
+#else
 template <class V>
 LANES auto at_least(V a, V b) {
   if constexpr (hwy::IsFloat<hn::TFromV<V>>())
@@ -122,10 +137,13 @@ LANES auto at_least(V a, V b) {
   }                                                                                  \
   template <class V, Scalar S>                                                       \
   LANES Mask operator op(Parts<V> x, S y) { return x op splat_as<V>(hn::TFromV<V>(y)); }
+#define LANES_SELECT(m, a, b) \
+  r.v[k] = hn::IfThenElse(hn::MaskFromVec(hn::BitCast(hn::DFromV<V>(), m.v[k])), a.v[k], b.v[k])
+#endif
 LANES_COMPARISON(<, truth(a < b, a))
 LANES_COMPARISON(>, truth(b < a, a))
 LANES_COMPARISON(==, truth(a == b, a))
-LANES_COMPARISON(!=, hn::Not(truth(a == b, a)))
+LANES_COMPARISON(!=, hn::Xor(truth(a == b, a), hn::Set(DI(), -1)))
 LANES_COMPARISON(<=, truth(at_least(b, a), a))
 LANES_COMPARISON(>=, truth(at_least(a, b), a))
 #undef LANES_COMPARISON
@@ -135,11 +153,8 @@ LANES Parts<V> operator-(Parts<V> x) {
   EACH_VECTOR r.v[k] = hn::Neg(x.v[k]);
   return r;
 }
-LANES Mask operator~(Mask x) {
-  Mask r;
-  EACH_VECTOR r.v[k] = hn::Not(x.v[k]);
-  return r;
-}
+// (x ^ −1, not hn::Not: GCC sees through the xor, and makes x & ~y one and-not.)
+LANES Mask operator~(Mask x) { return x ^ -1; }
 LANES Mask operator<<(Mask x, int bits) {
   Mask r;
   EACH_VECTOR r.v[k] = hn::ShiftLeftSame(x.v[k], bits);
@@ -189,7 +204,7 @@ LANES Values<hn::TFromV<V>> values(Parts<V> p) {
 template <class V>
 LANES Parts<V> sel(Mask m, Parts<V> a, Parts<V> b) {
   Parts<V> r;
-  EACH_VECTOR r.v[k] = hn::IfVecThenElse(hn::BitCast(hn::DFromV<V>(), m.v[k]), a.v[k], b.v[k]);
+  EACH_VECTOR LANES_SELECT(m, a, b);
   return r;
 }
 LANES bool any(Mask m) {
@@ -762,6 +777,8 @@ void first_hits(const Arcs& arcs, const Drive& drive, const Cells& cells, const 
 
 #undef LANES
 #undef LANES_LAMBDA
+#undef LANES_SELECT
+#undef EACH_VECTOR
 #undef ROUND_PART
 
 }  // namespace billiards::dynamics::lockstep::HWY_NAMESPACE
