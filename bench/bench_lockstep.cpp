@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
   const dynamics::Table table(shape.region);
   std::vector<dynamics::lockstep::Target> targets;
   if (const char* env = std::getenv("BILLIARDS_SIMD"); env && std::string(env) != "auto")
-    targets.push_back({env, 0, dynamics::lockstep::kernel_for(env)});
+    targets.push_back({env, 0, dynamics::lockstep::kernel_for(env), false});
   else
     for (const auto& t : dynamics::lockstep::runnable_targets())
       if (!(t.bit & dynamics::lockstep::generic_target)) targets.push_back(t);

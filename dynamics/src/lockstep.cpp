@@ -27,7 +27,7 @@ Kernel kernel_for(std::string_view choice) {
   const std::vector<Target> runnable = runnable_targets();
   if (choice == "auto") {
     for (const Target& t : runnable)
-      if (!(t.bit & generic_target)) return t.kernel;
+      if (t.automatic) return t.kernel;
     return nullptr;
   }
   std::string names, runs;

@@ -791,12 +791,12 @@ namespace billiards::dynamics::lockstep {
 // by Highway's own choice; the variable BILLIARDS_SIMD needs each target by name.)
 const std::vector<Target>& compiled_targets() {
   static const std::vector<Target> targets = [] {
-    const Target all[] = {{"avx512", HWY_AVX3, HWY_CHOOSE_AVX3(first_hits)},
-                          {"avx2", HWY_AVX2, HWY_CHOOSE_AVX2(first_hits)},
-                          {"sse4", HWY_SSE4, HWY_CHOOSE_SSE4(first_hits)},
-                          {"neon", HWY_NEON, HWY_CHOOSE_NEON(first_hits)},
+    const Target all[] = {{"avx512", HWY_AVX3, HWY_CHOOSE_AVX3(first_hits), true},
+                          {"avx2", HWY_AVX2, HWY_CHOOSE_AVX2(first_hits), true},
+                          {"sse4", HWY_SSE4, HWY_CHOOSE_SSE4(first_hits), false},
+                          {"neon", HWY_NEON, HWY_CHOOSE_NEON(first_hits), false},
 #if HWY_TARGETS & (HWY_EMU128 | HWY_SCALAR)
-                          {"generic", generic_target, HWY_CHOOSE_FALLBACK(first_hits)}
+                          {"generic", generic_target, HWY_CHOOSE_FALLBACK(first_hits), false}
 #endif
     };
     std::vector<Target> compiled;

@@ -33,19 +33,21 @@ namespace lockstep {
 /// lanes in plain C++, for the tests on any processor; `generic` in BILLIARDS_SIMD.
 inline constexpr std::int64_t generic_target = std::int64_t(1) << 61 | std::int64_t(1) << 62;
 /// A SIMD target the kernel is compiled for: its name (as BILLIARDS_SIMD spells it), Highway's
-/// bit for it, and the kernel.
+/// bit for it, the kernel, and whether `auto` may choose it: only targets faster than the
+/// scalar search (AVX-512 and AVX2; SSE4's two lanes a register run at half its rate:
+/// BENCHMARKS.md, and NEON's two are not measured).
 struct Target {
   const char* name;
   std::int64_t bit;
   Kernel kernel;
+  bool automatic;
 };
 /// The targets compiled in, best first.
 const std::vector<Target>& compiled_targets();
 /// Those this processor can run, best first.
 std::vector<Target> runnable_targets();
 /// The kernel for a value of BILLIARDS_SIMD: `scalar`, none (the scalar search); a target's
-/// name, its kernel; `auto`, the best target this processor runs in SIMD (`generic` is slower
-/// than the scalar search: never chosen by `auto`).
+/// name, its kernel; `auto`, the best `automatic` target this processor runs, else none.
 /// Throws std::runtime_error for any other name or a target this processor cannot run.
 Kernel kernel_for(std::string_view choice);
 /// The kernel that ensembles use: kernel_for(BILLIARDS_SIMD), `auto` where it is unset.
