@@ -14,10 +14,13 @@
 // compiler from fusing them either), builtins and this file's own functions (no std:: function
 // and no Eigen, whose inline functions would be compiled for one target and linked for all).
 
-// Targets left out: sizeless vectors (SVE, RVV) cannot be members of a Pack; SSSE3 (no 64-bit
-// comparison) and AVX3_DL (nothing more for doubles than AVX-512) would only lengthen the build.
+// Targets left out: sizeless vectors (SVE, RVV) cannot be members of a Pack; NEON's vectors
+// have constructors that GCC 12 will not inline into a Pack's implicit one (a build error), and
+// leave `Pack{}` unset where the lanes need zeros; SSSE3 (no 64-bit comparison) and AVX3_DL
+// (nothing more for doubles than AVX-512) would only lengthen the build.
 #ifndef HWY_DISABLED_TARGETS
-#define HWY_DISABLED_TARGETS (HWY_SSSE3 | HWY_AVX3_DL | HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
+#define HWY_DISABLED_TARGETS \
+  (HWY_SSSE3 | HWY_AVX3_DL | HWY_NEON | HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
 #endif
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "lockstep_kernel.cpp"
