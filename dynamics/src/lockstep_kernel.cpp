@@ -1,6 +1,6 @@
 // The lock-step search of driven flights (lockstep.hpp), compiled once for each SIMD target of
 // Google Highway: hwy/foreach_target.h includes this file again for each (SSE4, AVX2 and
-// AVX-512 on x86-64, NEON on Arm, and EMU128, plain C++, everywhere), each in its own namespace;
+// AVX-512 on x86-64, and EMU128 or SCALAR, plain C++, everywhere), each in its own namespace;
 // lockstep.cpp chooses one at run time.  The search holds sixteen lanes whatever the target:
 // a Pack is 16 / L vectors of the target's L lanes.
 //
@@ -797,7 +797,6 @@ const std::vector<Target>& compiled_targets() {
     const Target all[] = {{"avx512", HWY_AVX3, HWY_CHOOSE_AVX3(first_hits), true},
                           {"avx2", HWY_AVX2, HWY_CHOOSE_AVX2(first_hits), true},
                           {"sse4", HWY_SSE4, HWY_CHOOSE_SSE4(first_hits), false},
-                          {"neon", HWY_NEON, HWY_CHOOSE_NEON(first_hits), false},
 #if HWY_TARGETS & (HWY_EMU128 | HWY_SCALAR)
                           {"generic", generic_target, HWY_CHOOSE_FALLBACK(first_hits), false}
 #endif

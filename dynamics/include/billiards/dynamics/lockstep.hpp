@@ -12,7 +12,7 @@
 // iteration that stalls, a phase beyond the fast sine) is handed back to the scalar search.
 //
 // The kernel is written once over packs of sixteen lanes and compiled by Google Highway for each
-// SIMD target (SSE4, AVX2 and AVX-512 on x86-64, NEON on Arm, and EMU128, plain C++, anywhere),
+// SIMD target (SSE4, AVX2 and AVX-512 on x86-64, and `generic`, plain C++, anywhere),
 // one chosen at run time: each holds the lanes in its own registers and performs the same
 // operations, so every target finds the same collisions as the scalar search.
 #pragma once
@@ -35,7 +35,7 @@ inline constexpr std::int64_t generic_target = std::int64_t(1) << 61 | std::int6
 /// A SIMD target the kernel is compiled for: its name (as BILLIARDS_SIMD spells it), Highway's
 /// bit for it, the kernel, and whether `auto` may choose it: only targets faster than the
 /// scalar search (AVX-512 and AVX2; SSE4's two lanes a register run at half its rate:
-/// BENCHMARKS.md, and NEON's two are not measured).
+/// BENCHMARKS.md).
 struct Target {
   const char* name;
   std::int64_t bit;
