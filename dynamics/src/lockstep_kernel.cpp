@@ -50,8 +50,9 @@ constexpr int L = int(hn::MaxLanes(D()));
 static_assert(W % L == 0 && L <= max_arcs, "a Pack is whole vectors; a table's arcs fill one or more");
 constexpr int K = W / L;  // vectors in a Pack
 
-// Every function here is inlined: a Pack passed to a call costs more than most of them.
-#define LANES HWY_ATTR [[gnu::always_inline]] inline
+// Every function here is inlined: a Pack passed to a call costs more than most of them (and
+// GCC inlines a function of Highway's vectors less readily than one of its own vector types).
+#define LANES [[gnu::always_inline]] inline
 #define LANES_LAMBDA __attribute__((always_inline))
 // ...except the two halves of a round (Lanes::choose and Lanes::step), each a few hundred
 // operations on lanes: inlined into one loop, GCC allocates registers for both at once and
@@ -377,7 +378,7 @@ struct Arc {
         fx(splat(a.fx[w])), fy(splat(a.fy[w])), tx(splat(a.tx[w])), ty(splat(a.ty[w])), full(a.full[w] ? ~Mask{} : Mask{}),
         half(a.half[w] ? ~Mask{} : Mask{}) {}
   /// BasicArcWall::within_span of (x, y).
-  Mask within_span(Pack x, Pack y) const {
+  LANES Mask within_span(Pack x, Pack y) const {
     const Pack ux = x - cx, uy = y - cy, tol = slack * r;
     const Mask half_span = (cross(fx, fy, ux, uy) >= -tol) & (cross(ux, uy, tx, ty) >= -tol);
     const Mask long_span = ~((cross(tx, ty, ux, uy) > tol) & (cross(ux, uy, fx, fy) > tol));
@@ -460,7 +461,7 @@ LANES void arc_windows(const Quiver& q, const Arc& a, Pack horizon, Mask live, W
     margin_time = sel(horizon < inf, horizon, bound);
   }
   const Pack m = q.delta + tolerance(margin_time);
-  auto at_distance = [&](Pack rho, Pack& t1, Pack& t2) {
+  auto at_distance = [&](Pack rho, Pack& t1, Pack& t2) LANES_LAMBDA {
     const Pack k = cc - rho * rho, D = b * b - uu * k;
     const Pack root = sqrt(D);
     const Mask b_neg = b <= 0;
