@@ -66,10 +66,19 @@ template <class V>
 struct Parts {
   V v[K];
 };
-using Pack = Parts<hn::Vec<D>>;
+using VD = hn::Vec<D>;
+using VI = hn::Vec<DI>;
+using Pack = Parts<VD>;
 /// Sixteen 64-bit integers: lane indices, counters, and truth values (−1 true, 0 false, as
 /// the comparisons of C's vector extensions make them).
-using Mask = Parts<hn::Vec<DI>>;
+using Mask = Parts<VI>;
+/// f of each vector of x.
+template <class R, class V, class F>
+LANES Parts<R> each(Parts<V> x, F f) {
+  Parts<R> r;
+  EACH_VECTOR r.v[k] = f(x.v[k]);
+  return r;
+}
 
 template <class S>
 concept Scalar = std::is_arithmetic_v<S>;
@@ -79,10 +88,10 @@ LANES Parts<V> splat_as(hn::TFromV<V> x) {
   EACH_VECTOR r.v[k] = hn::Set(hn::DFromV<V>(), x);
   return r;
 }
-LANES Pack splat(double x) { return splat_as<hn::Vec<D>>(x); }
+LANES Pack splat(double x) { return splat_as<VD>(x); }
 /// A comparison's result in lanes: −1 or 0.
 template <class M, class V>
-LANES hn::Vec<DI> truth(M m, V) {
+LANES VI truth(M m, V) {
   return hn::BitCast(DI(), hn::VecFromMask(hn::DFromV<V>(), m));
 }
 
@@ -153,21 +162,15 @@ LANES_COMPARISON(>=, truth(at_least(a, b), a))
 #undef LANES_COMPARISON
 template <class V>
 LANES Parts<V> operator-(Parts<V> x) {
-  Parts<V> r;
-  EACH_VECTOR r.v[k] = hn::Neg(x.v[k]);
-  return r;
+  return each<V>(x, [](V v) LANES_LAMBDA { return hn::Neg(v); });
 }
 // (x ^ −1, not hn::Not: GCC sees through the xor, and makes x & ~y one and-not.)
 LANES Mask operator~(Mask x) { return x ^ -1; }
 LANES Mask operator<<(Mask x, int bits) {
-  Mask r;
-  EACH_VECTOR r.v[k] = hn::ShiftLeftSame(x.v[k], bits);
-  return r;
+  return each<VI>(x, [bits](VI v) LANES_LAMBDA { return hn::ShiftLeftSame(v, bits); });
 }
 LANES Mask operator>>(Mask x, int bits) {
-  Mask r;
-  EACH_VECTOR r.v[k] = hn::ShiftRightSame(x.v[k], bits);
-  return r;
+  return each<VI>(x, [bits](VI v) LANES_LAMBDA { return hn::ShiftRightSame(v, bits); });
 }
 LANES Mask& operator&=(Mask& x, Mask y) { return x = x & y; }
 LANES Mask& operator|=(Mask& x, Mask y) { return x = x | y; }
@@ -212,40 +215,18 @@ LANES Parts<V> sel(Mask m, Parts<V> a, Parts<V> b) {
   return r;
 }
 LANES bool any(Mask m) {
-  hn::Vec<DI> r = m.v[0];
+  VI r = m.v[0];
   for (int k = 1; k < K; ++k) r = r | m.v[k];
   return !hn::AllFalse(DI(), hn::MaskFromVec(r));
 }
-LANES Pack abs(Pack x) {
-  EACH_VECTOR x.v[k] = hn::Abs(x.v[k]);
-  return x;
-}
-LANES Pack sqrt(Pack x) {
-  EACH_VECTOR x.v[k] = hn::Sqrt(x.v[k]);
-  return x;
-}
+LANES Pack abs(Pack x) { return each<VD>(x, [](VD v) LANES_LAMBDA { return hn::Abs(v); }); }
+LANES Pack sqrt(Pack x) { return each<VD>(x, [](VD v) LANES_LAMBDA { return hn::Sqrt(v); }); }
 /// Truncated to integers (as C converts; exact for integers below 2⁵²).
-LANES Mask to_long(Pack x) {
-  Mask r;
-  EACH_VECTOR r.v[k] = hn::ConvertTo(DI(), x.v[k]);
-  return r;
-}
-LANES Pack to_double(Mask x) {
-  Pack r;
-  EACH_VECTOR r.v[k] = hn::ConvertTo(D(), x.v[k]);
-  return r;
-}
+LANES Mask to_long(Pack x) { return each<VI>(x, [](VD v) LANES_LAMBDA { return hn::ConvertTo(DI(), v); }); }
+LANES Pack to_double(Mask x) { return each<VD>(x, [](VI v) LANES_LAMBDA { return hn::ConvertTo(D(), v); }); }
 /// A double's bits, and back.
-LANES Mask bits(Pack x) {
-  Mask r;
-  EACH_VECTOR r.v[k] = hn::BitCast(DI(), x.v[k]);
-  return r;
-}
-LANES Pack from_bits(Mask x) {
-  Pack r;
-  EACH_VECTOR r.v[k] = hn::BitCast(D(), x.v[k]);
-  return r;
-}
+LANES Mask bits(Pack x) { return each<VI>(x, [](VD v) LANES_LAMBDA { return hn::BitCast(DI(), v); }); }
+LANES Pack from_bits(Mask x) { return each<VD>(x, [](VI v) LANES_LAMBDA { return hn::BitCast(D(), v); }); }
 /// std::max(a, b) and std::min(a, b), as the scalar code has them: (a < b) ? b : a, (b < a) ? b : a.
 LANES Pack max(Pack a, Pack b) { return sel(a < b, b, a); }
 LANES Pack min(Pack a, Pack b) { return sel(b < a, b, a); }
@@ -255,7 +236,7 @@ LANES Parts<V> pick(Parts<V> table, Mask index) {
   const hn::DFromV<V> d;
   Parts<V> r;
   EACH_VECTOR {
-    const hn::Vec<DI> i = hn::And(index.v[k], hn::Set(DI(), max_arcs - 1));
+    const VI i = hn::And(index.v[k], hn::Set(DI(), max_arcs - 1));
     const auto lane = hn::IndicesFromVec(d, hn::And(i, hn::Set(DI(), L - 1)));
     r.v[k] = hn::TableLookupLanes(table.v[0], lane);
     for (int j = 1; j < max_arcs / L; ++j)  // (the vector that holds entry i)
