@@ -1,6 +1,7 @@
 // The lock-step search alone: driven clover collisions found sixteen at a time
-// (LockstepTable::collisions: packing, the kernel, the hits' states, hand-backs) against the
-// scalar `collision` on the same states, in the same process.  The states are recorded along
+// (LockstepTable::collisions: packing, the kernel, the hits' states, hand-backs) for each SIMD
+// target this processor runs (BILLIARDS_SIMD set: that one only) against the scalar
+// `collision` on the same states, in the same process.  The states are recorded along
 // real trajectories first (an ensemble's flights as `billiard run` meets them, with its horizon),
 // so that only the search is timed, not the rest of a run.  Every hit is checked bit for bit
 // against the scalar one before timing.
@@ -16,6 +17,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <string>
 #include <vector>
 
 using namespace billiards;
@@ -78,17 +80,19 @@ int main(int argc, char** argv) {
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 5;
   const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/clover.yaml");
   const dynamics::Table table(shape.region);
-  const auto kernel = dynamics::lockstep::chosen_kernel();
-  if (!kernel) {
-    fmt::print("no lock-step kernel on this processor (AVX-512 missing, or BILLIARDS_LOCKSTEP=scalar)\n");
-    return 0;
-  }
-  fmt::print("driven clover, {} batches of {} flights per frequency, best of {}; ns per collision\n", batches, lanes,
-             repeats);
-  fmt::print("{:>8} {:>12} {:>12} {:>8} {:>10}\n", "omega", "scalar", "lock step", "ratio", "M/s lock");
+  std::vector<dynamics::lockstep::Target> targets;
+  if (const char* env = std::getenv("BILLIARDS_SIMD"); env && std::string(env) != "auto")
+    targets.push_back({env, 0, dynamics::lockstep::kernel_for(env), false});
+  else
+    for (const auto& t : dynamics::lockstep::runnable_targets())
+      if (!(t.bit & dynamics::lockstep::generic_target)) targets.push_back(t);
+  fmt::print("driven clover, {} batches of {} flights per frequency, best of {}; ns per collision (M/s)\n", batches,
+             lanes, repeats);
+  fmt::print("{:>8} {:>16}", "omega", "scalar");
+  for (const auto& t : targets) fmt::print(" {:>16} {:>6}", t.name, "ratio");
+  fmt::print("\n");
   for (const double w : {10.0, 40.0, 320.0, 2560.0}) {
     const PeriodicDriveFlight flight{10 / std::sqrt(2.0) * Vec2(1, 1), w * geometry::pi, 0};
-    const dynamics::LockstepTable lockstep(table, flight, kernel);
     const auto flights = record(table, flight, batches * lanes);
     // Hits go to a batch's worth of storage, as in an ensemble (all of them at once would be
     // 50 MB of writes that the search never makes); their times are summed so that none is
@@ -101,32 +105,36 @@ int main(int argc, char** argv) {
       for (int i = 0; i < lanes; ++i) states[i] = &flights[b + i].state, t_end[i] = flights[b + i].t_end;
       search(states, t_end);
     };
-    auto search_scalar = [&](const DrivenState* const* states, const double* t_end) {
-      for (int i = 0; i < lanes; ++i) sum += (scalar[i] = dynamics::collision(table, flight, *states[i], t_end[i])).t;
-    };
-    auto search_lockstep = [&](const DrivenState* const* states, const double* t_end) {
-      lockstep.collisions(states, t_end, lanes, lock);
-      for (int i = 0; i < lanes; ++i) sum += lock[i].t;
-    };
-    std::size_t differ = 0;
-    for (std::size_t b = 0; b < flights.size(); b += lanes) {
-      batch(b, search_scalar);
-      batch(b, search_lockstep);
-      for (int i = 0; i < lanes; ++i) differ += !same(lock[i], scalar[i]);
-    }
-    if (differ) {
-      fmt::print("omega {}pi: {} hits differ from the scalar search\n", w, differ);
-      return 1;
-    }
     auto all = [&](auto search) {
       return [&, search] {
         for (std::size_t b = 0; b < flights.size(); b += lanes) batch(b, search);
       };
     };
+    auto search_scalar = [&](const DrivenState* const* states, const double* t_end) {
+      for (int i = 0; i < lanes; ++i) sum += (scalar[i] = dynamics::collision(table, flight, *states[i], t_end[i])).t;
+    };
     const double ns_scalar = best_ns(flights.size(), repeats, all(search_scalar));
-    const double ns_lock = best_ns(flights.size(), repeats, all(search_lockstep));
+    fmt::print("{:>6}pi {:>8.1f} ({:>5.2f})", w, ns_scalar, 1e3 / ns_scalar);
+    for (const auto& target : targets) {
+      const dynamics::LockstepTable lockstep(table, flight, target.kernel);
+      auto search_lockstep = [&](const DrivenState* const* states, const double* t_end) {
+        lockstep.collisions(states, t_end, lanes, lock);
+        for (int i = 0; i < lanes; ++i) sum += lock[i].t;
+      };
+      std::size_t differ = 0;
+      for (std::size_t b = 0; b < flights.size(); b += lanes) {
+        batch(b, search_scalar);
+        batch(b, search_lockstep);
+        for (int i = 0; i < lanes; ++i) differ += !same(lock[i], scalar[i]);
+      }
+      if (differ) {
+        fmt::print("\nomega {}pi, {}: {} hits differ from the scalar search\n", w, target.name, differ);
+        return 1;
+      }
+      const double ns_lock = best_ns(flights.size(), repeats, all(search_lockstep));
+      fmt::print(" {:>8.1f} ({:>5.2f}) {:>5.2f}x", ns_lock, 1e3 / ns_lock, ns_scalar / ns_lock);
+    }
     if (!(sum > 0)) return 1;
-    fmt::print("{:>6}pi {:>12.1f} {:>12.1f} {:>7.2f}x {:>10.2f}\n", w, ns_scalar, ns_lock, ns_scalar / ns_lock,
-               1e3 / ns_lock);
+    fmt::print("\n");
   }
 }

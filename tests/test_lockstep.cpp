@@ -1,7 +1,7 @@
 // Driven collisions searched in lock step (lockstep.hpp) against the scalar search they must
 // reproduce bit for bit: batch by batch on states along real trajectories, with and without
-// horizons, and whole ensembles particle by particle.  The baseline kernel runs on any
-// processor; the AVX-512 kernel too where the processor has it.
+// horizons, and whole ensembles particle by particle, for every SIMD target this processor runs
+// (the generic one, plain C++, everywhere).
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -23,16 +24,7 @@ using geometry::Vec2;
 
 namespace {
 
-struct NamedKernel {
-  const char* name;
-  dynamics::lockstep::Kernel kernel;
-};
-
-std::vector<NamedKernel> kernels() {
-  std::vector<NamedKernel> k{{"baseline", &dynamics::lockstep::baseline::first_hits}};
-  if (dynamics::lockstep::has_avx512()) k.push_back({"avx512", &dynamics::lockstep::avx512::first_hits});
-  return k;
-}
+std::vector<dynamics::lockstep::Target> kernels() { return dynamics::lockstep::runnable_targets(); }
 
 dynamics::Table table_of(const std::string& shape) {
   return dynamics::Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + shape + ".yaml").region);
@@ -89,7 +81,7 @@ TEST_CASE("lock step: each batch's hits are the scalar search's, bit for bit") {
       const auto table = table_of(shape);
       const PeriodicDriveFlight flight{10 / std::sqrt(2.0) * Vec2(1, 1), omega, 0.3};
       const auto states = states_along_trajectories(table, flight, 6, 60);
-      for (const auto& [name, kernel] : kernels()) {
+      for (const auto& [name, bit, kernel, automatic] : kernels()) {
         const dynamics::LockstepTable lockstep(table, flight, kernel);
         REQUIRE(lockstep.usable());
         int compared = 0, found = 0, mismatches = 0;
@@ -148,7 +140,7 @@ TEST_CASE("lock step: tables with segments or too many arcs are left to the scal
   const PeriodicDriveFlight flight{Vec2(7, 7), 40 * pi, 0};
   for (const char* shape : {"stadium", "sinai", "mushroom", "square"}) {
     const auto table = table_of(shape);
-    CHECK_FALSE(dynamics::LockstepTable(table, flight, &dynamics::lockstep::baseline::first_hits).usable());
+    CHECK_FALSE(dynamics::LockstepTable(table, flight, kernels().back().kernel).usable());
   }
   // Arcs only, but more than the kernel holds: a circle cut into max_arcs + 1 arcs.
   geometry::Region2 circle;
@@ -162,12 +154,12 @@ TEST_CASE("lock step: tables with segments or too many arcs are left to the scal
   }
   const dynamics::Table many(circle);
   REQUIRE(many.arcs().size() == std::size_t(arcs));
-  CHECK_FALSE(dynamics::LockstepTable(many, flight, &dynamics::lockstep::baseline::first_hits).usable());
-  // No kernel (a processor without AVX-512 and BILLIARDS_LOCKSTEP unset): not usable either.
+  CHECK_FALSE(dynamics::LockstepTable(many, flight, kernels().back().kernel).usable());
+  // No kernel (BILLIARDS_SIMD=scalar): not usable either.
   CHECK_FALSE(dynamics::LockstepTable(table_of("clover"), flight, nullptr).usable());
 }
 
-TEST_CASE("lock step: ensembles equal simulate particle by particle, for 1 and 2 threads") {
+TEST_CASE("lock step: ensembles equal simulate particle by particle, for every target and 1, 2 and 3 threads") {
   const auto table = table_of("clover");
   dynamics::RunOptions opt;
   opt.record_times = {0, 0.5, 10, 200};
@@ -179,8 +171,8 @@ TEST_CASE("lock step: ensembles equal simulate particle by particle, for 1 and 2
     std::vector<double> expected(n * m);
     std::vector<dynamics::ParticleLog> logs(n);
     for (std::size_t i = 0; i < n; ++i) logs[i] = dynamics::simulate(table, flight, initial(i), opt, &expected[i * m]);
-    for (const auto& [name, kernel] : kernels())
-      for (const int threads : {1, 2}) {
+    for (const auto& [name, bit, kernel, automatic] : kernels())
+      for (const int threads : {1, 2, 3}) {
         INFO(name << " kernel, omega " << omega << ", " << threads << " threads");
         const dynamics::LockstepTable lockstep(table, flight, kernel);
         dynamics::EnsembleResult res;
@@ -197,6 +189,30 @@ TEST_CASE("lock step: ensembles equal simulate particle by particle, for 1 and 2
         CHECK(collisions > 20 * n);  // (long enough runs that the lanes refill many times)
       }
   }
+}
+
+TEST_CASE("lock step: BILLIARDS_SIMD's names choose the targets, and refuse what they cannot") {
+  namespace ls = dynamics::lockstep;
+  const auto runnable = ls::runnable_targets();
+  REQUIRE_FALSE(runnable.empty());
+  CHECK(std::string(runnable.back().name) == "generic");  // (everywhere, and the slowest)
+#if defined(__x86_64__)
+  // Every x86-64 target is compiled in, whatever the build machine has.
+  std::string compiled;
+  for (const auto& t : ls::compiled_targets()) compiled += std::string(t.name) + " ";
+  CHECK(compiled == "avx512 avx2 sse4 generic ");
+#endif
+  for (const auto& t : runnable) CHECK(ls::kernel_for(t.name) == t.kernel);
+  CHECK(ls::kernel_for("scalar") == nullptr);
+  // auto: the best target faster than the scalar search, else the scalar search.
+  const auto best = std::find_if(runnable.begin(), runnable.end(), [](const auto& t) { return t.automatic; });
+  CHECK(ls::kernel_for("auto") == (best == runnable.end() ? nullptr : best->kernel));
+  if (std::any_of(runnable.begin(), runnable.end(), [](const auto& t) { return std::string(t.name) == "avx2"; }))
+    CHECK(best != runnable.end());
+  CHECK_THROWS_WITH(ls::kernel_for("avx1024"), Catch::Contains("BILLIARDS_SIMD=avx1024: expected scalar, "));
+  for (const auto& t : ls::compiled_targets())
+    if (std::none_of(runnable.begin(), runnable.end(), [&](const auto& r) { return r.kernel == t.kernel; }))
+      CHECK_THROWS_WITH(ls::kernel_for(t.name), Catch::Contains("this processor cannot run it"));
 }
 
 TEST_CASE("lock step: an exception thrown for one particle is rethrown after the run, not a termination") {

@@ -1,5 +1,9 @@
 #include "billiards/dynamics/lockstep.hpp"
 
+#include <hwy/targets.h>
+
+static_assert(billiards::dynamics::lockstep::generic_target == (HWY_EMU128 | HWY_SCALAR));
+
 #include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
@@ -10,27 +14,40 @@ namespace billiards::dynamics {
 
 namespace lockstep {
 
-bool has_avx512() {
-#if defined(__x86_64__) && defined(__GNUC__)
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
-#else
-  return false;
-#endif
+std::vector<Target> runnable_targets() {
+  std::vector<Target> runnable;
+  const std::int64_t supported = hwy::SupportedTargets();
+  for (const Target& t : compiled_targets())
+    if (supported & t.bit) runnable.push_back(t);
+  return runnable;
+}
+
+Kernel kernel_for(std::string_view choice) {
+  if (choice == "scalar") return nullptr;
+  const std::vector<Target> runnable = runnable_targets();
+  if (choice == "auto") {
+    for (const Target& t : runnable)
+      if (t.automatic) return t.kernel;
+    return nullptr;
+  }
+  std::string names, runs;
+  for (const Target& t : compiled_targets()) {
+    names += std::string(t.name) + ", ";
+    if (t.name != choice) continue;
+    for (const Target& r : runnable) {
+      if (r.name == choice) return r.kernel;
+      runs += std::string(runs.empty() ? "" : ", ") + r.name;
+    }
+    throw std::runtime_error("BILLIARDS_SIMD=" + std::string(choice) + ": this processor cannot run it (it runs " + runs +
+                             ", scalar or auto)");
+  }
+  throw std::runtime_error("BILLIARDS_SIMD=" + std::string(choice) + ": expected scalar, " + names + "or auto");
 }
 
 Kernel chosen_kernel() {
-  static const Kernel k = []() -> Kernel {
-    const char* env = std::getenv("BILLIARDS_LOCKSTEP");
-    const std::string choice = env ? env : "auto";
-    if (choice == "scalar") return nullptr;
-    if (choice == "baseline") return &baseline::first_hits;
-    if (choice == "auto" || choice == "avx512") {
-      if (has_avx512()) return &avx512::first_hits;
-      if (choice == "auto") return nullptr;
-      throw std::runtime_error("BILLIARDS_LOCKSTEP=avx512: this processor has no AVX-512");
-    }
-    throw std::runtime_error("BILLIARDS_LOCKSTEP=" + choice + ": expected auto, avx512, baseline or scalar");
+  static const Kernel k = [] {
+    const char* env = std::getenv("BILLIARDS_SIMD");
+    return kernel_for(env ? env : "auto");
   }();
   return k;
 }

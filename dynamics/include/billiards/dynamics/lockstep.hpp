@@ -11,27 +11,46 @@
 // (a guide that creeps or stands still, a window where the sign of f' is uncertain, an
 // iteration that stalls, a phase beyond the fast sine) is handed back to the scalar search.
 //
-// The kernel is compiled twice, for AVX-512 (two registers of eight doubles hold the sixteen
-// particles), chosen at run time on processors that have it, and without it (plain x86-64 or
-// any other processor), which the tests compare with the scalar search everywhere (too slow to
-// use: GCC emulates the lanes); it shares no inline function with the rest of the program, so
-// that no AVX-512 code can reach a processor without it.
+// The kernel is written once over packs of sixteen lanes and compiled by Google Highway for each
+// SIMD target (SSE4, AVX2 and AVX-512 on x86-64, and `generic`, plain C++, anywhere),
+// one chosen at run time: each holds the lanes in its own registers and performs the same
+// operations, so every target finds the same collisions as the scalar search.
 #pragma once
 
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/lockstep_lanes.hpp"
 
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
 namespace billiards::dynamics {
 
 namespace lockstep {
 
-/// Does this processor have AVX-512 (F and DQ)?
-bool has_avx512();
-/// The kernel that ensembles use: AVX-512 where the processor has it, else none (the scalar
-/// search: the baseline kernel's lanes, emulated, are 7× slower than it).  The
-/// environment variable BILLIARDS_LOCKSTEP overrides the choice: auto, avx512, baseline (for
-/// tests) or scalar (for benchmarks).
+/// Highway's targets without SIMD (EMU128, or SCALAR where the compiler cannot build it): the
+/// lanes in plain C++, for the tests on any processor; `generic` in BILLIARDS_SIMD.
+inline constexpr std::int64_t generic_target = std::int64_t(1) << 61 | std::int64_t(1) << 62;
+/// A SIMD target the kernel is compiled for: its name (as BILLIARDS_SIMD spells it), Highway's
+/// bit for it, the kernel, and whether `auto` may choose it: only targets faster than the
+/// scalar search (AVX-512 and AVX2; SSE4's two lanes a register run at half its rate:
+/// BENCHMARKS.md).
+struct Target {
+  const char* name;
+  std::int64_t bit;
+  Kernel kernel;
+  bool automatic;
+};
+/// The targets compiled in, best first.
+const std::vector<Target>& compiled_targets();
+/// Those this processor can run, best first.
+std::vector<Target> runnable_targets();
+/// The kernel for a value of BILLIARDS_SIMD: `scalar`, none (the scalar search); a target's
+/// name, its kernel; `auto`, the best `automatic` target this processor runs, else none.
+/// Throws std::runtime_error for any other name or a target this processor cannot run.
+Kernel kernel_for(std::string_view choice);
+/// The kernel that ensembles use: kernel_for(BILLIARDS_SIMD), `auto` where it is unset.
 Kernel chosen_kernel();
 
 }  // namespace lockstep

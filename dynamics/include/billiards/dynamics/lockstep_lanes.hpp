@@ -1,18 +1,20 @@
 // The lock-step kernel's plain data (lockstep.hpp): what it reads and writes, and nothing it
-// could share with the rest of the program.  The kernel (src/lockstep_kernel.inc) includes only
-// this header and phase_constants.hpp, which have no inline function: compiled for AVX-512, the
-// kernel must not define an inline function that the linker could pick for the baseline
-// program too.
+// could share with the rest of the program.  The kernel (src/lockstep_kernel.cpp) uses only
+// this header and phase_constants.hpp, which have no inline function: compiled for each SIMD
+// target, the kernel must not define an inline function that the linker could pick for the
+// rest of the program too.
 #pragma once
+
+#include <cstdint>
 
 namespace billiards::dynamics {
 
 namespace lockstep {
 
 /// Particles searched together, one per lane, and the most walls a table searched in lock step
-/// may have.  (Sixteen lanes fill two AVX-512 registers, whose independent operations
-/// interleave and hide each other's latency; more lanes only lengthen the rounds in which
-/// finished lanes wait for the rest.)
+/// may have.  (Sixteen lanes fill two AVX-512 registers, four AVX2 or eight SSE4 registers,
+/// whose independent operations interleave and hide each other's latency; more lanes only
+/// lengthen the rounds in which finished lanes wait for the rest.)
 inline constexpr int lanes = 16;
 inline constexpr int max_arcs = 8;
 
@@ -22,7 +24,7 @@ inline constexpr int max_arcs = 8;
 struct alignas(64) Arcs {
   double cx[max_arcs], cy[max_arcs], r[max_arcs], sign[max_arcs], slack[max_arcs];
   double fx[max_arcs], fy[max_arcs], tx[max_arcs], ty[max_arcs];
-  long long full[max_arcs], half[max_arcs];  // −1 (true) or 0
+  std::int64_t full[max_arcs], half[max_arcs];  // −1 (true) or 0
   int count = 0;
 };
 
@@ -47,7 +49,7 @@ struct alignas(64) Flights {
   double phase_hi[lanes], phase_lo[lanes];                        // the drive's phase (Phase)
   double sin_phase[lanes], cos_phase[lanes];                      // and its sine and cosine
   double tau_end[lanes];                                          // the horizon, from the state's time
-  long long active[lanes];                                        // −1: search this lane
+  std::int64_t active[lanes];                                     // −1: search this lane
 };
 
 /// What the search found, lane by lane: the first hit's τ and wall (−1: none before tau_end),
@@ -67,14 +69,8 @@ struct alignas(64) Hits {
   bool midpoint_inside[lanes];  // Table::certainly_contains of the oscillation segment at mid-flight
 };
 
-/// The kernel (lockstep_kernel.inc), as compiled for each instruction set.
+/// The kernel (lockstep_kernel.cpp), as compiled for one SIMD target.
 using Kernel = void (*)(const Arcs& arcs, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits);
-namespace baseline {
-void first_hits(const Arcs& arcs, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits);
-}
-namespace avx512 {
-void first_hits(const Arcs& arcs, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits);
-}
 
 }  // namespace lockstep
 

@@ -1,5 +1,5 @@
 // The constants of the drive's phase reduction (phase.hpp), apart: the lock-step kernel
-// (lockstep_kernel.inc) reduces phases with them too, and may include no inline function.
+// (lockstep_kernel.cpp) reduces phases with them too, and may include no inline function.
 #pragma once
 
 namespace billiards::dynamics::phase_constants {

@@ -1,157 +1,249 @@
-// The lock-step search of driven flights (lockstep.hpp), included by lockstep_baseline.cpp and
-// lockstep_avx512.cpp, each with its own LOCKSTEP_ISA namespace and compiler flags.
+// The lock-step search of driven flights (lockstep.hpp), compiled once for each SIMD target of
+// Google Highway: hwy/foreach_target.h includes this file again for each (SSE4, AVX2 and
+// AVX-512 on x86-64, and EMU128 or SCALAR, plain C++, everywhere), each in its own namespace;
+// lockstep.cpp chooses one at run time.  The search holds sixteen lanes whatever the target:
+// a Pack is 16 / L vectors of the target's L lanes.
 //
 // Every line below transcribes a line of the scalar search, lane by lane, with the operands in
 // the same order (the source is named at each step): SphereGap's windows, slope_sign,
 // may_meet_span, monotone_crossing, certainly_below, PhaseSample::shifted, sin_cos; and for the
 // state at the hit, PeriodicDriveFlight::advance, phase.hpp's reduce_phase and
 // BasicArcWall::contact.  Branches become selections; a lane leaves the search (`handed_back`)
-// wherever the scalar search would take a path not transcribed here.  Only builtins and this
-// file's own functions are called (no std:: function and no Eigen): see lockstep_lanes.hpp.
+// wherever the scalar search would take a path not transcribed here.  The lanes use only
+// Highway's operations that round as IEEE (no fused multiply-add: -ffp-contract=off keeps the
+// compiler from fusing them either), builtins and this file's own functions (no std:: function
+// and no Eigen, whose inline functions would be compiled for one target and linked for all).
+
+// Targets left out: sizeless vectors (SVE, RVV) cannot be members of a Pack; NEON's vectors
+// have constructors that GCC 12 will not inline into a Pack's implicit one (a build error), and
+// leave `Pack{}` unset where the lanes need zeros; SSSE3 (no 64-bit comparison) and AVX3_DL
+// (nothing more for doubles than AVX-512) would only lengthen the build.
+#ifndef HWY_DISABLED_TARGETS
+#define HWY_DISABLED_TARGETS \
+  (HWY_SSSE3 | HWY_AVX3_DL | HWY_NEON | HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
+#endif
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "lockstep_kernel.cpp"
+#include <hwy/foreach_target.h>  // (this file, once per target)
+#include <hwy/highway.h>
+
+#include "billiards/dynamics/lockstep.hpp"
 #include "billiards/dynamics/lockstep_lanes.hpp"
 #include "billiards/dynamics/phase_constants.hpp"
 
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
-
+#include <cstdint>
 #include <type_traits>  // (std::is_arithmetic_v: no code)
 
-// (_mm512_undefined_pd in the intrinsics is uninitialized on purpose; the baseline build warns
-// that it returns 64-byte vectors in memory, as it must.)
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wpsabi"
+#pragma GCC diagnostic ignored "-Wpsabi"  // (vectors passed by value: inlined throughout)
 
-namespace billiards::dynamics::lockstep::LOCKSTEP_ISA {
+HWY_BEFORE_NAMESPACE();
+namespace billiards::dynamics::lockstep::HWY_NAMESPACE {
 
 namespace {
 
+namespace hn = hwy::HWY_NAMESPACE;
+
 constexpr int W = lanes;
-static_assert(W == 16, "two registers of eight lanes");
+using D = hn::ScalableTag<double>;       // the target's vector of doubles
+using DI = hn::RebindToSigned<D>;        // and of 64-bit integers
+constexpr int L = int(hn::MaxLanes(D()));
+static_assert(W % L == 0 && L <= max_arcs, "a Pack is whole vectors; a table's arcs fill one or more");
+constexpr int K = W / L;  // vectors in a Pack
 
-// Eight lanes in one AVX-512 register...
-using P8 = double __attribute__((vector_size(64)));
-using M8 = long __attribute__((vector_size(64)));  // per lane: −1 (true) or 0
-using B8 = unsigned long __attribute__((vector_size(64)));
-
-// Every function here is inlined: a 64-byte lane passed to a call costs more than most of them.
+// Every function here is inlined: a Pack passed to a call costs more than most of them (and
+// GCC inlines a function of Highway's vectors less readily than one of its own vector types).
 #define LANES [[gnu::always_inline]] inline
 #define LANES_LAMBDA __attribute__((always_inline))
 // ...except the two halves of a round (Lanes::choose and Lanes::step), each a few hundred
 // operations on lanes: inlined into one loop, GCC allocates registers for both at once and
 // spills more; called, each half has the registers to itself.
 #define ROUND_PART [[gnu::noinline]]
+#define EACH_VECTOR _Pragma("GCC unroll 16") for (int k = 0; k < K; ++k)
 
-/// ...and sixteen in two, every operation issued for both halves one after the other: the two
+/// Sixteen lanes in K vectors, every operation issued for each vector one after the other: the
 /// chains of dependent operations (a round of the search is one) overlap in the processor.
-/// (GCC expands a generic vector of sixteen doubles piecewise, lane by lane.)
 template <class V>
-struct X2 {
-  V a, b;
-  auto operator[](int i) const { return i < 8 ? a[i] : b[i - 8]; }
-  template <class U>
-  explicit operator X2<U>() const { return {(U)a, (U)b}; }
+struct Parts {
+  V v[K];
 };
-using Pack = X2<P8>;
-using Mask = X2<M8>;
-using Bits = X2<B8>;
+using VD = hn::Vec<D>;
+using VI = hn::Vec<DI>;
+using Pack = Parts<VD>;
+/// Sixteen 64-bit integers: lane indices, counters, and truth values (−1 true, 0 false, as
+/// the comparisons of C's vector extensions make them).
+using Mask = Parts<VI>;
+/// f of each vector of x.
+template <class R, class V, class F>
+LANES Parts<R> each(Parts<V> x, F f) {
+  Parts<R> r;
+  EACH_VECTOR r.v[k] = f(x.v[k]);
+  return r;
+}
 
 template <class S>
 concept Scalar = std::is_arithmetic_v<S>;
-#define LANES_BINARY(op)                                                                                          \
-  template <class V>                                                                                             \
-  LANES auto operator op(X2<V> x, X2<V> y) { return X2<decltype(x.a op y.a)>{x.a op y.a, x.b op y.b}; }          \
-  template <class V, Scalar S>                                                                                   \
-  LANES auto operator op(X2<V> x, S y) { return X2<decltype(x.a op y)>{x.a op y, x.b op y}; }                    \
-  template <class V, Scalar S>                                                                                   \
-  LANES auto operator op(S x, X2<V> y) { return X2<decltype(x op y.a)>{x op y.a, x op y.b}; }
-LANES_BINARY(+)
-LANES_BINARY(-)
-LANES_BINARY(*)
-LANES_BINARY(/)
-LANES_BINARY(<)
-LANES_BINARY(>)
-LANES_BINARY(<=)
-LANES_BINARY(>=)
-LANES_BINARY(==)
-LANES_BINARY(!=)
-LANES_BINARY(&)
-LANES_BINARY(|)
-LANES_BINARY(^)
-LANES_BINARY(<<)
-LANES_BINARY(>>)
-#undef LANES_BINARY
 template <class V>
-LANES X2<V> operator-(X2<V> x) { return {-x.a, -x.b}; }
+LANES Parts<V> splat_as(hn::TFromV<V> x) {
+  Parts<V> r;
+  EACH_VECTOR r.v[k] = hn::Set(hn::DFromV<V>(), x);
+  return r;
+}
+LANES Pack splat(double x) { return splat_as<VD>(x); }
+/// A comparison's result in lanes: −1 or 0.
+template <class M, class V>
+LANES VI truth(M m, V) {
+  return hn::BitCast(DI(), hn::VecFromMask(hn::DFromV<V>(), m));
+}
+
+#define LANES_ARITHMETIC(op)                                                          \
+  template <class V>                                                                 \
+  LANES Parts<V> operator op(Parts<V> x, Parts<V> y) {                               \
+    Parts<V> r;                                                                      \
+    EACH_VECTOR r.v[k] = x.v[k] op y.v[k];                                           \
+    return r;                                                                        \
+  }                                                                                  \
+  template <class V, Scalar S>                                                       \
+  LANES Parts<V> operator op(Parts<V> x, S y) { return x op splat_as<V>(hn::TFromV<V>(y)); } \
+  template <class V, Scalar S>                                                       \
+  LANES Parts<V> operator op(S x, Parts<V> y) { return splat_as<V>(hn::TFromV<V>(x)) op y; }
+LANES_ARITHMETIC(+)
+LANES_ARITHMETIC(-)
+LANES_ARITHMETIC(*)
+LANES_ARITHMETIC(/)
+LANES_ARITHMETIC(&)
+LANES_ARITHMETIC(|)
+LANES_ARITHMETIC(^)
+#undef LANES_ARITHMETIC
+// Comparisons as C's: false where an operand is NaN, except != (true there).  On x86, GCC's
+// vector comparisons and selections on Highway's registers: from them GCC keeps a comparison's
+// result in a mask register up to the selection (AVX-512), where Highway's VecFromMask and
+// MaskFromVec, opaque to it, convert to a vector and back on the search's critical path (the
+// kernel was 15-40% slower).  Elsewhere Highway's (whose != is false on NaN: ~(x == y) here).
+#if HWY_ARCH_X86 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
+#define LANES_COMPARISON(op, lane)                                            \
+  template <class V>                                                         \
+  LANES Mask operator op(Parts<V> x, Parts<V> y) {                           \
+    Mask r;                                                                  \
+    EACH_VECTOR r.v[k].raw = decltype(r.v[k].raw)(x.v[k].raw op y.v[k].raw); \
+    return r;                                                                \
+  }                                                                          \
+  template <class V, Scalar S>                                               \
+  LANES Mask operator op(Parts<V> x, S y) { return x op splat_as<V>(hn::TFromV<V>(y)); }
+#define LANES_SELECT(m, a, b) r.v[k].raw = m.v[k].raw ? a.v[k].raw : b.v[k].raw
+#else
 template <class V>
-LANES X2<V> operator~(X2<V> x) { return {~x.a, ~x.b}; }
+LANES auto at_least(V a, V b) {
+  if constexpr (hwy::IsFloat<hn::TFromV<V>>())
+    return a >= b;
+  else
+    return hn::Not(a < b);  // (on doubles, not the same: NaN)
+}
+#define LANES_COMPARISON(op, lane)                                                    \
+  template <class V>                                                                 \
+  LANES Mask operator op(Parts<V> x, Parts<V> y) {                                   \
+    Mask r;                                                                          \
+    EACH_VECTOR {                                                                    \
+      const V a = x.v[k], b = y.v[k];                                                \
+      r.v[k] = lane;                                                                 \
+    }                                                                                \
+    return r;                                                                        \
+  }                                                                                  \
+  template <class V, Scalar S>                                                       \
+  LANES Mask operator op(Parts<V> x, S y) { return x op splat_as<V>(hn::TFromV<V>(y)); }
+#define LANES_SELECT(m, a, b) \
+  r.v[k] = hn::IfThenElse(hn::MaskFromVec(hn::BitCast(hn::DFromV<V>(), m.v[k])), a.v[k], b.v[k])
+#endif
+LANES_COMPARISON(<, truth(a < b, a))
+LANES_COMPARISON(>, truth(b < a, a))
+LANES_COMPARISON(==, truth(a == b, a))
+LANES_COMPARISON(!=, hn::Xor(truth(a == b, a), hn::Set(DI(), -1)))
+LANES_COMPARISON(<=, truth(at_least(b, a), a))
+LANES_COMPARISON(>=, truth(at_least(a, b), a))
+#undef LANES_COMPARISON
 template <class V>
-LANES X2<V>& operator&=(X2<V>& x, X2<V> y) { return x = x & y; }
-template <class V>
-LANES X2<V>& operator|=(X2<V>& x, X2<V> y) { return x = x | y; }
+LANES Parts<V> operator-(Parts<V> x) {
+  return each<V>(x, [](V v) LANES_LAMBDA { return hn::Neg(v); });
+}
+// (x ^ −1, not hn::Not: GCC sees through the xor, and makes x & ~y one and-not.)
+LANES Mask operator~(Mask x) { return x ^ -1; }
+LANES Mask operator<<(Mask x, int bits) {
+  return each<VI>(x, [bits](VI v) LANES_LAMBDA { return hn::ShiftLeftSame(v, bits); });
+}
+LANES Mask operator>>(Mask x, int bits) {
+  return each<VI>(x, [bits](VI v) LANES_LAMBDA { return hn::ShiftRightSame(v, bits); });
+}
+LANES Mask& operator&=(Mask& x, Mask y) { return x = x & y; }
+LANES Mask& operator|=(Mask& x, Mask y) { return x = x | y; }
 
 constexpr double eps = 0x1p-52;  // std::numeric_limits<double>::epsilon()
 constexpr double inf = __builtin_inf();
 
 // ---- Lanes ---------------------------------------------------------------------------------
 
-LANES P8 splat8(double x) {  // (not P8{} + x, which turns −0 into +0)
-  P8 p;
-  for (int i = 0; i < 8; ++i) p[i] = x;
-  return p;
-}
-LANES Pack splat(double x) { return {splat8(x), splat8(x)}; }
-template <class V, class T>
-LANES V load8(const T* x) {
-  V p;
-  __builtin_memcpy(&p, x, sizeof p);
-  return p;
-}
-LANES Pack load(const double* x) { return {load8<P8>(x), load8<P8>(x + 8)}; }
-LANES void store(double* x, Pack p) {
-  __builtin_memcpy(x, &p.a, sizeof p.a);
-  __builtin_memcpy(x + 8, &p.b, sizeof p.b);
-}
-LANES Mask load_mask(const long long* x) { return {load8<M8>(x), load8<M8>(x + 8)}; }
-/// A table's field (max_arcs = 8 entries) in each half's lanes, for `pick`.
-LANES Pack load_arcs(const double* x) { return {load8<P8>(x), load8<P8>(x)}; }
-LANES Mask load_arcs(const long long* x) { return {load8<M8>(x), load8<M8>(x)}; }
-LANES Pack sel(Mask m, Pack a, Pack b) { return {m.a ? a.a : b.a, m.b ? a.b : b.b}; }
-LANES Mask sel(Mask m, Mask a, Mask b) { return {m.a ? a.a : b.a, m.b ? a.b : b.b}; }
-LANES bool any(Mask m) {
-  const M8 r = m.a | m.b;
-#if defined(__AVX512F__)
-  // (One test into a mask register: GCC compiled the loop below into a chain of extractions.)
-  return _mm512_test_epi64_mask((__m512i)r, (__m512i)r) != 0;
-#else
-  long long x = 0;
-  for (int i = 0; i < 8; ++i) x |= r[i];
-  return x != 0;
-#endif
-}
-LANES Pack abs(Pack x) { return (Pack)((Bits)x & ~(Bits)splat(-0.0)); }
-LANES P8 sqrt8(P8 x) {
-#if defined(__AVX512F__)
-  return _mm512_sqrt_pd(x);
-#else
-  // (Lane by lane, correctly rounded as std::sqrt: the baseline kernel, for tests, on any
-  // processor.)
-  P8 r;
-  for (int i = 0; i < 8; ++i) r[i] = __builtin_sqrt(x[i]);
+template <class T>
+LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_as(const T* x) {
+  Parts<hn::Vec<hn::Rebind<T, D>>> r;
+  EACH_VECTOR r.v[k] = hn::LoadU(hn::Rebind<T, D>(), x + k * L);
   return r;
-#endif
 }
-LANES Pack sqrt(Pack x) { return {sqrt8(x.a), sqrt8(x.b)}; }
-/// Truncated to integers, as longs (as C converts; exact for integers below 2⁵²).
-LANES Mask to_long(Pack x) { return {__builtin_convertvector(x.a, M8), __builtin_convertvector(x.b, M8)}; }
-LANES Pack to_double(Mask x) { return {__builtin_convertvector(x.a, P8), __builtin_convertvector(x.b, P8)}; }
+LANES Pack load(const double* x) { return load_as(x); }
+LANES Mask load_mask(const std::int64_t* x) { return load_as(x); }
+LANES void store(double* x, Pack p) { EACH_VECTOR hn::StoreU(p.v[k], D(), x + k * L); }
+/// A table's field (max_arcs entries, in max_arcs / L vectors) in each group of vectors, for `pick`.
+template <class T>
+LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_arcs(const T* x) {
+  Parts<hn::Vec<hn::Rebind<T, D>>> r;
+  EACH_VECTOR r.v[k] = hn::LoadU(hn::Rebind<T, D>(), x + k * L % max_arcs);
+  return r;
+}
+/// Each lane's values, to be read one by one.
+template <class T>
+struct Values {
+  T x[W];
+  T operator[](int i) const { return x[i]; }
+};
+template <class V>
+LANES Values<hn::TFromV<V>> values(Parts<V> p) {
+  Values<hn::TFromV<V>> r;
+  EACH_VECTOR hn::StoreU(p.v[k], hn::DFromV<V>(), r.x + k * L);
+  return r;
+}
+template <class V>
+LANES Parts<V> sel(Mask m, Parts<V> a, Parts<V> b) {
+  Parts<V> r;
+  EACH_VECTOR LANES_SELECT(m, a, b);
+  return r;
+}
+LANES bool any(Mask m) {
+  VI r = m.v[0];
+  for (int k = 1; k < K; ++k) r = r | m.v[k];
+  return !hn::AllFalse(DI(), hn::MaskFromVec(r));
+}
+LANES Pack abs(Pack x) { return each<VD>(x, [](VD v) LANES_LAMBDA { return hn::Abs(v); }); }
+LANES Pack sqrt(Pack x) { return each<VD>(x, [](VD v) LANES_LAMBDA { return hn::Sqrt(v); }); }
+/// Truncated to integers (as C converts; exact for integers below 2⁵²).
+LANES Mask to_long(Pack x) { return each<VI>(x, [](VD v) LANES_LAMBDA { return hn::ConvertTo(DI(), v); }); }
+LANES Pack to_double(Mask x) { return each<VD>(x, [](VI v) LANES_LAMBDA { return hn::ConvertTo(D(), v); }); }
+/// A double's bits, and back.
+LANES Mask bits(Pack x) { return each<VI>(x, [](VD v) LANES_LAMBDA { return hn::BitCast(DI(), v); }); }
+LANES Pack from_bits(Mask x) { return each<VD>(x, [](VI v) LANES_LAMBDA { return hn::BitCast(D(), v); }); }
 /// std::max(a, b) and std::min(a, b), as the scalar code has them: (a < b) ? b : a, (b < a) ? b : a.
 LANES Pack max(Pack a, Pack b) { return sel(a < b, b, a); }
 LANES Pack min(Pack a, Pack b) { return sel(b < a, b, a); }
-/// A table's field (one entry per wall, in each half: load_arcs) for each lane's wall index.
-LANES Pack pick(Pack table, Mask index) { return {__builtin_shuffle(table.a, index.a), __builtin_shuffle(table.a, index.b)}; }
-LANES Mask pick(Mask table, Mask index) { return {__builtin_shuffle(table.a, index.a), __builtin_shuffle(table.a, index.b)}; }
+/// A table's field (load_arcs) for each lane's wall index (taken modulo max_arcs).
+template <class V>
+LANES Parts<V> pick(Parts<V> table, Mask index) {
+  const hn::DFromV<V> d;
+  Parts<V> r;
+  EACH_VECTOR {
+    const VI i = hn::And(index.v[k], hn::Set(DI(), max_arcs - 1));
+    const auto lane = hn::IndicesFromVec(d, hn::And(i, hn::Set(DI(), L - 1)));
+    r.v[k] = hn::TableLookupLanes(table.v[0], lane);
+    for (int j = 1; j < max_arcs / L; ++j)  // (the vector that holds entry i)
+      r.v[k] = hn::IfThenElse(hn::RebindMask(d, hn::Set(DI(), j * L - 1) < i), hn::TableLookupLanes(table.v[j], lane), r.v[k]);
+  }
+  return r;
+}
 LANES Pack cross(Pack ax, Pack ay, Pack bx, Pack by) { return ax * by - ay * bx; }
 
 // ---- The drive's sine and cosine (phase.hpp's sin_cos and its fdlibm kernels) --------------
@@ -181,12 +273,12 @@ LANES void sin_cos(Pack theta, Pack& s, Pack& c, Mask& fast) {
   const Pack th = sel(fast, theta, splat(0.0));
   const Pack k = (th * two_over_pi + 0x1.8p52) - 0x1.8p52;
   const Pack x = (th - k * pio2_1) - k * pio2_1t;
-  const Bits q = (Bits)to_long(k);
-  const Bits sb = (Bits)kernel_sin(x), cb = (Bits)kernel_cos(x);
-  const Bits odd = -(q & 1);
-  const Bits sq = (sb & ~odd) | (cb & odd), cq = (cb & ~odd) | (sb & odd);
-  s = (Pack)(sq ^ ((q & 2) << 62));
-  c = (Pack)(cq ^ (((q + 1) & 2) << 62));
+  const Mask q = to_long(k);
+  const Mask sb = bits(kernel_sin(x)), cb = bits(kernel_cos(x));
+  const Mask odd = -(q & 1);
+  const Mask sq = (sb & ~odd) | (cb & odd), cq = (cb & ~odd) | (sb & odd);
+  s = from_bits(sq ^ ((q & 2) << 62));
+  c = from_bits(cq ^ (((q + 1) & 2) << 62));
 }
 
 // ---- The drive's phase in two doubles (phase.hpp) ------------------------------------------
@@ -267,7 +359,7 @@ struct Arc {
         fx(splat(a.fx[w])), fy(splat(a.fy[w])), tx(splat(a.tx[w])), ty(splat(a.ty[w])), full(a.full[w] ? ~Mask{} : Mask{}),
         half(a.half[w] ? ~Mask{} : Mask{}) {}
   /// BasicArcWall::within_span of (x, y).
-  Mask within_span(Pack x, Pack y) const {
+  LANES Mask within_span(Pack x, Pack y) const {
     const Pack ux = x - cx, uy = y - cy, tol = slack * r;
     const Mask half_span = (cross(fx, fy, ux, uy) >= -tol) & (cross(ux, uy, tx, ty) >= -tol);
     const Mask long_span = ~((cross(tx, ty, ux, uy) > tol) & (cross(ux, uy, fx, fy) > tol));
@@ -350,7 +442,7 @@ LANES void arc_windows(const Quiver& q, const Arc& a, Pack horizon, Mask live, W
     margin_time = sel(horizon < inf, horizon, bound);
   }
   const Pack m = q.delta + tolerance(margin_time);
-  auto at_distance = [&](Pack rho, Pack& t1, Pack& t2) {
+  auto at_distance = [&](Pack rho, Pack& t1, Pack& t2) LANES_LAMBDA {
     const Pack k = cc - rho * rho, D = b * b - uu * k;
     const Pack root = sqrt(D);
     const Mask b_neg = b <= 0;
@@ -420,12 +512,9 @@ class Lanes {
     if (any(searching_)) step();
   }
   void write(Hits& hits) const {
-    for (int i = 0; i < W; ++i) {
-      hits.tau[i] = tau_best_[i];
-      hits.wall[i] = int(best_wall_[i]);
-      hits.theta[i] = theta_[i], hits.sin[i] = sin_[i], hits.cos[i] = cos_[i];
-      hits.handed_back[i] = handed_back_[i] != 0;
-    }
+    store(hits.tau, tau_best_), store(hits.theta, theta_), store(hits.sin, sin_), store(hits.cos, cos_);
+    const auto wall = values(best_wall_), handed_back = values(handed_back_);
+    for (int i = 0; i < W; ++i) hits.wall[i] = int(wall[i]), hits.handed_back[i] = handed_back[i] != 0;
   }
 
   /// The flight's state at each lane's hit, as LockstepTable::collisions has the scalar code
@@ -468,7 +557,8 @@ class Lanes {
       store(hits.phase_hi, phase_hi), store(hits.phase_lo, phase_lo), store(hits.sin_phase, sn), store(hits.cos_phase, cs);
       store(hits.point_x, px), store(hits.point_y, py), store(hits.normal_x, normal_x), store(hits.normal_y, normal_y);
     }
-    for (int i = 0; i < W; ++i) hits.made[i] = made[i] != 0;
+    const auto made_in = values(made);
+    for (int i = 0; i < W; ++i) hits.made[i] = made_in[i] != 0;
   }
 
  private:
@@ -490,9 +580,10 @@ class Lanes {
     // One cell, or neighbouring ones (by a side or a corner) whose block of two or four cells
     // is convex: all four corners of the block inside.  Without branches (whether the ends
     // share a cell is as good as random); lanes that cannot be certain look up cell 0.
+    const auto px = values(pix), py = values(piy), qx = values(qix), qy = values(qiy), found_in = values(found);
     for (int i = 0; i < W; ++i) {
-      const long ix = pix[i], iy = piy[i], jx = qix[i], jy = qiy[i];
-      const bool near = (found[i] != 0) & (ix >= 0) & (jx >= 0) & (ix - jx <= 1) & (jx - ix <= 1) & (iy - jy <= 1) &
+      const long ix = px[i], iy = py[i], jx = qx[i], jy = qy[i];
+      const bool near = (found_in[i] != 0) & (ix >= 0) & (jx >= 0) & (ix - jx <= 1) & (jx - ix <= 1) & (iy - jy <= 1) &
                         (jy - iy <= 1);
       auto inside = [&](long x, long y) { return cells.cell[near ? y * cells.nx + x : 0] == 1; };  // (Classes::inside)
       hits.midpoint_inside[i] = near & inside(ix, iy) & inside(jx, jy) & inside(ix, jy) & inside(jx, iy);
@@ -671,6 +762,34 @@ void first_hits(const Arcs& arcs, const Drive& drive, const Cells& cells, const 
 
 #undef LANES
 #undef LANES_LAMBDA
+#undef LANES_SELECT
+#undef EACH_VECTOR
 #undef ROUND_PART
 
-}  // namespace billiards::dynamics::lockstep::LOCKSTEP_ISA
+}  // namespace billiards::dynamics::lockstep::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace billiards::dynamics::lockstep {
+
+// The targets compiled above (nullptr where not), best first.  (HWY_EXPORT's table is indexed
+// by Highway's own choice; the variable BILLIARDS_SIMD needs each target by name.)
+const std::vector<Target>& compiled_targets() {
+  static const std::vector<Target> targets = [] {
+    const Target all[] = {{"avx512", HWY_AVX3, HWY_CHOOSE_AVX3(first_hits), true},
+                          {"avx2", HWY_AVX2, HWY_CHOOSE_AVX2(first_hits), true},
+                          {"sse4", HWY_SSE4, HWY_CHOOSE_SSE4(first_hits), false},
+#if HWY_TARGETS & (HWY_EMU128 | HWY_SCALAR)
+                          {"generic", generic_target, HWY_CHOOSE_FALLBACK(first_hits), false}
+#endif
+    };
+    std::vector<Target> compiled;
+    for (const Target& t : all)
+      if (t.kernel) compiled.push_back(t);
+    return compiled;
+  }();
+  return targets;
+}
+
+}  // namespace billiards::dynamics::lockstep
+#endif
