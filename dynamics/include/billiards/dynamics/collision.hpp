@@ -175,25 +175,15 @@ void bounce(const Flight& flight, typename Flight::State& s, const HitT& hit) {
   s.v = reflect(s.v, hit.normal);
 }
 
-/// Does the flight's law depend on the absolute time, not only on the time since its start (a
-/// flight that does not carry its drive's phase in its state)?  Such a flight keeps the
-/// absolute time in its state's t: `restart_clock` leaves it there.
-template <class Flight>
-inline constexpr bool reads_absolute_time = [] {
-  if constexpr (requires { Flight::reads_absolute_time; }) return Flight::reads_absolute_time;
-  else return false;
-}();
-
 /// Starts the particle's next flight on its own clock: the time of the flight just made moves
 /// from the state (its t) to the run's clock, and the state's t becomes 0.  The collision
 /// loops do this after every bounce, so that a flight's times are resolved to its own rounding
-/// however long the run (state.hpp's BasicClock).
+/// however long the run (state.hpp's BasicClock).  Every flight's law reads only the time since
+/// its start: a drive's phase is carried in the state (forced_flight.hpp's BasicDrivenState).
 template <class Flight>
 void restart_clock(const Flight&, typename Flight::State& s, BasicClock<typename Flight::Scalar>& clock) {
-  if constexpr (!reads_absolute_time<Flight>) {
-    clock.add(s.t);
-    s.t = 0;
-  }
+  clock.add(s.t);
+  s.t = 0;
 }
 
 /// A hit (and the flight's state at it) or a state as callers see it: its time absolute, the
