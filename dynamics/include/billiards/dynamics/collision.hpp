@@ -195,23 +195,38 @@ T on_clock(T event, const Clock& clock) {
   return event;
 }
 
+/// A flight as it was made on its own clock: its duration (the hit's time on the flight's
+/// clock, which started at 0) and the run's clock at its start.  What a visitor of `evolve`
+/// needs to work inside a flight (a tangent flow over its duration, a section's crossings)
+/// without differences of absolute times, which would be rounded to ulp(t).
+template <class Real>
+struct Flown {
+  Real duration;
+  const BasicClock<Real>& start;
+};
+
 /// Follows the particle from `s` through its next `collisions` bounces (fewer if it meets no
 /// wall: an escape), calling visit(hit, state) with the state just after each bounce, times
-/// absolute; energy-conserving flights restore the speed after every bounce.  Each flight runs
-/// on its own clock (restart_clock).  Returns the bounces made.  Any table (2-D or 3-D):
+/// absolute (or visit(hit, state, flown) with the flight's Flown too, when it takes three
+/// arguments); energy-conserving flights restore the speed after every bounce.  Each flight
+/// runs on its own clock (restart_clock).  Returns the bounces made.  Any table (2-D or 3-D):
 /// `collision` and `bounce` are found by overload resolution.
 template <class TableT, class Flight, class Visit>
 std::size_t evolve(const TableT& table, const Flight& flight, typename Flight::State s, std::size_t collisions,
                    Visit&& visit) {
+  using Real = typename Flight::Scalar;
   const auto v2 = s.v.squaredNorm();
-  BasicClock<typename Flight::Scalar> clock;
+  BasicClock<Real> clock;
   restart_clock(flight, s, clock);
   for (std::size_t k = 0; k < collisions; ++k) {
     const auto hit = collision(table, flight, s);
     if (!hit.found()) return k;
     bounce(flight, s, hit);
     if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
-    visit(on_clock(hit, clock), on_clock(s, clock));
+    if constexpr (std::is_invocable_v<Visit&, decltype(on_clock(hit, clock)), decltype(on_clock(s, clock)), Flown<Real>>)
+      visit(on_clock(hit, clock), on_clock(s, clock), Flown<Real>{s.t, clock});
+    else
+      visit(on_clock(hit, clock), on_clock(s, clock));
     restart_clock(flight, s, clock);
   }
   return collisions;
