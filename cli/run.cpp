@@ -153,8 +153,14 @@ EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& 
         interrupted = true;
         break;
       }
-      dynamics::run_particles(table, flight, initial, opt, first, last, args.threads, result,
-                              [&](std::size_t done) { progress.update(first + done); });
+      try {
+        dynamics::run_particles(table, flight, initial, opt, first, last, args.threads, result,
+                                [&](std::size_t done) { progress.update(first + done); });
+      } catch (const dynamics::ParticleError& e) {
+        // The same scene and seed fail the same way: nothing to resume, so no checkpoint stays.
+        if (procs.root()) checkpoint.remove();
+        throw std::runtime_error(fmt::format("{}: {}", scene.file, e.what()));
+      }
       checkpoint.save(first, last, m, result);
     }
     progress.update(last);

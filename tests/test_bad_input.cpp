@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <thread>
 
@@ -90,6 +91,36 @@ TEST_CASE("scene and shape files: duplicate keys, non-UTF-8 bytes, unknown param
                               "    - arc: {center: [1, 1], radius: 1, side: inside}\n"
                               "    - point: [2, 1]\n    - point: [2, 0]\n    - point: [0, 0]\n");
   check_refused(billiard("info " + (dir / "cw.yaml").string()), "runs clockwise: list its pieces counter-clockwise", out);
+}
+
+TEST_CASE("a field that is not finite where only some particles go: an error naming the scene and the particle") {
+  // sqrt(|x − 0.31| − 0.001) is NaN in a strip 0.002 wide, between the points of the grid on
+  // which the scene's field is checked before the run (1/32 apart): only the particles that
+  // cross the strip meet it.  The integrator then stopped with "cannot meet its tolerance (step
+  // size underflow)", naming neither the scene nor the particle, and left OUT.partial/.
+  const auto dir = scratch("field-nan");
+  const auto out = dir / "out";
+  const std::string scene = "shape: " + shapes + "clover.yaml\nmass: 1\ninitial:\n  microcanonical: {energy: 1/2}\n"
+                            "force:\n  field: {amplitude: [\"10*sqrt(abs(x - 0.31) - 0.001)\", \"0\"], omega: 320*pi}\n"
+                            "run:\n  particles: 50\n  time: 1\n";
+  const auto r = run_scene(dir, scene);
+  INFO(r.output);
+  CHECK(r.status == 1);
+  const std::string prefix = "billiard: error: " + (dir / "scene.yaml").string() + ": particle ";
+  REQUIRE_THAT(r.output, Catch::Contains(prefix) && Catch::Contains(", in its flight from t = ") &&
+                             Catch::Contains(": the force is not finite at (x, y) = ("));
+  for (const char* internal : {"std::", "underflow", "terminate"}) CHECK_THAT(r.output, !Catch::Contains(internal));
+  CHECK(leaves_nothing(out));
+  // The point named lies in the strip, and the time within the run.
+  const auto at = r.output.find("(x, y) = (") + 10;
+  CHECK(std::abs(std::stod(r.output.substr(at)) - 0.31) <= 0.001);
+  const double t = std::stod(r.output.substr(r.output.find("from t = ") + 9));
+  CHECK((t >= 0 && t < 1));
+  // The first failing particle, whatever the number of threads.
+  const auto one = billiard("run " + (dir / "scene.yaml").string() + " --quiet --threads 1 --out " + out.string());
+  const auto line = [](const std::string& text) { return text.substr(text.find("billiard: error: ")); };
+  CHECK(line(one.output) == line(r.output));
+  CHECK(leaves_nothing(out));
 }
 
 TEST_CASE("record times always start at 0, so the measured changes are from the start") {

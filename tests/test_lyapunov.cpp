@@ -170,6 +170,28 @@ TEST_CASE("cyclotron orbits that meet no wall are trapped, left out of the expon
   CHECK(r.escapes() == 0);
 }
 
+TEST_CASE("a trajectory's exponents do not depend on when it starts: each flight's tangent flow over its own duration") {
+  // The same orbit started at t = 1e8 + 1/8 instead of 0: each flight runs on its own clock, so
+  // the flights, their durations and the stretches are the same bit for bit.  A duration taken
+  // as the difference of two absolute hit times would be rounded to ulp(1e8) = 1.5e-8, which
+  // moves every stretch.
+  const auto sh = bundled_shape("stadium.yaml");
+  const dynamics::Table table(sh.region);
+  dynamics::State s;
+  s.x = geometry::Vec2(0.1, 0.2);
+  s.v = geometry::Vec2(std::cos(0.7), std::sin(0.7));
+  auto late = s;
+  late.t = 1e8 + 0.125;
+  auto check = [&](const auto& flight) {
+    const auto a = analysis::lyapunov_trajectory(table, flight, s, 2000),
+               b = analysis::lyapunov_trajectory(table, flight, late, 2000);
+    for (int k = 0; k < 4; ++k) CHECK(b.log_stretch[k] == a.log_stretch[k]);
+    CHECK(std::abs(b.time - a.time) <= 1.5e-8);  // (b's end time absolute: rounded to ulp(1e8))
+  };
+  check(dynamics::FreeFlight{});
+  check(field);
+}
+
 TEST_CASE("the spectrum comes in conjugate pairs that sum to zero") {
   for (const char* name : {"stadium.yaml", "clover.yaml", "sinai-ellipse.yaml"}) {
     INFO(name);

@@ -2,9 +2,14 @@
 
 #include "billiards/dynamics/table.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 
 namespace billiards::dynamics {
+
+ParticleError::ParticleError(std::size_t particle, double t, const std::string& cause)
+    : std::runtime_error(fmt::format("particle {}, in its flight from t = {:.9g}: {}", particle, t, cause)) {}
 
 std::uint64_t EnsembleResult::collisions() const {
   std::uint64_t n = 0;

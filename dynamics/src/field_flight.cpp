@@ -4,6 +4,8 @@
 
 #include "billiards/dynamics/certified_scan.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -55,7 +57,9 @@ double acceleration_bound(const FieldFlight::Model& m, const Vec2& lo, const Vec
     for (int j = 0; j <= n; ++j) {
       const Vec2 x = lo + Vec2((hi - lo).x() * i / n, (hi - lo).y() * j / n);
       const double v = m.acceleration_size(x);
-      if (!std::isfinite(v)) throw std::runtime_error("the field is not finite over the table");
+      if (!std::isfinite(v))
+        throw std::runtime_error(
+            fmt::format("the force is not finite at (x, y) = ({:.9g}, {:.9g}), in the table's bounding box", x.x(), x.y()));
       a[i * (n + 1) + j] = v;
       top = std::max(top, v);
       if (i > 0) jump = std::max(jump, std::abs(v - a[(i - 1) * (n + 1) + j]));
@@ -141,6 +145,11 @@ class Integrator {
     Vec4 d;
     d.head<2>() = y.tail<2>();
     d.tail<2>() = m_.acceleration(y.head<2>(), theta0_ + m_.omega * tau);
+    // (Else the steps would shrink until they underflow, a message that hides the cause: a
+    // field or potential that is not finite where the particle goes, between the grid points
+    // acceleration_bound checked.)
+    if (!d.tail<2>().allFinite())
+      throw std::runtime_error(fmt::format("the force is not finite at (x, y) = ({:.9g}, {:.9g})", y[0], y[1]));
     return d;
   }
   /// A first trial step: a small fraction of the drive's period and of the time to cross the

@@ -450,14 +450,14 @@ struct FieldFrame {
   }
 };
 
-/// Position and velocity τ after s (the header's formulas; the drive's phase from s.t).
+/// Position and velocity τ after s (the header's formulas; e^{iθ} from the state's phase).
 template <class Real, int D>
 std::pair<VecN<Real, D>, VecN<Real, D>> drifted(const BasicMagneticDriveFlight<Real, D>& f, const FieldFrame<Real, D>& frame,
-                                                const BasicState<Real, D>& s, const Real& tau) {
+                                                const BasicDrivenState<Real, D>& s, const Real& tau) {
   using C = Complex<Real>;
   const C v0 = frame.across(s.v), half_a = frame.across(f.accel) / Real(2);
   const Real W = frame.W, up = W + f.omega, down = W - f.omega;
-  const C e = std::polar(Real(1), Real(f.omega * s.t + f.phase0));
+  const C e(s.cos_phase, s.sin_phase);
   const C v = std::polar(Real(1), Real(-W * tau)) * (v0 + half_a * (e * ramp(up, tau) + std::conj(e) * ramp(down, tau)));
   const C dx = ramp(Real(-W), tau) * v0 +
                half_a * (e * double_ramp(up, Real(-W), tau) + std::conj(e) * double_ramp(down, Real(-W), tau));
@@ -476,7 +476,7 @@ std::pair<VecN<Real, D>, VecN<Real, D>> drifted(const BasicMagneticDriveFlight<R
 /// hold over a step of at most one cyclotron period, with V the speed bound at its end (away
 /// from the resonance the bound saturates: a long step costs no accuracy).
 template <class Real, int D, class Gap, class Tolerance, class InSpan>
-Real driven_exit(const BasicMagneticDriveFlight<Real, D>& f, const BasicState<Real, D>& s, const Real& t_end, Gap gap,
+Real driven_exit(const BasicMagneticDriveFlight<Real, D>& f, const BasicDrivenState<Real, D>& s, const Real& t_end, Gap gap,
                  Tolerance tolerance, InSpan in_span) {
   using std::abs;
   if (t_end == never) throw std::logic_error("a magnetic flight under a force needs a search horizon");
@@ -530,8 +530,10 @@ const auto everywhere = [](const auto&) { return true; };
 
 template <class Real, int D>
 auto BasicMagneticDriveFlight<Real, D>::advance(const State& s, const Real& t) const -> State {
+  const Real tau = t - s.t;
   State r = s;
-  std::tie(r.x, r.v) = drifted(*this, FieldFrame<Real, D>(omega_c), s, Real(t - s.t));
+  std::tie(r.x, r.v) = drifted(*this, FieldFrame<Real, D>(omega_c), s, tau);
+  r.set_phase(advance_phase(s.phase, omega, tau));
   r.t = t;
   return r;
 }
@@ -646,12 +648,12 @@ template Reference Gyration<Reference, 2>::exit_time(const BasicEllipticArcWall<
 template FlightHit<BasicMagneticFlight<Reference>> Gyration<Reference, 2>::first_hit(const BasicTable<Reference>&, const Reference&) const;
 template BasicState<Reference> BasicMagneticFlight<Reference>::advance(const State&, const Reference&) const;
 template Reference BasicMagneticFlight<Reference>::period() const;
-template BasicState<double> BasicMagneticDriveFlight<double>::advance(const State&, const double&) const;
+template BasicDrivenState<double> BasicMagneticDriveFlight<double>::advance(const State&, const double&) const;
 template double BasicMagneticDriveFlight<double>::speed_bound(const State&, const double&) const;
 template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicSegmentWall<double>&, const double&) const;
 template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicArcWall<double>&, const double&) const;
 template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicEllipticArcWall<double>&, const double&) const;
-template BasicState<long double> BasicMagneticDriveFlight<long double>::advance(const State&, const long double&) const;
+template BasicDrivenState<long double> BasicMagneticDriveFlight<long double>::advance(const State&, const long double&) const;
 template long double BasicMagneticDriveFlight<long double>::speed_bound(const State&, const long double&) const;
 template long double BasicMagneticDriveFlight<long double>::exit_time(const State&, const BasicSegmentWall<long double>&, const long double&) const;
 template long double BasicMagneticDriveFlight<long double>::exit_time(const State&, const BasicArcWall<long double>&, const long double&) const;
@@ -665,7 +667,7 @@ template double Gyration<double, 3>::exit_time(const SphereWall&, double) const;
 template Tube3 Gyration<double, 3>::tube() const;
 template State3 MagneticFlight3::advance(const State&, const double&) const;
 template double MagneticFlight3::period() const;
-template State3 MagneticDriveFlight3::advance(const State&, const double&) const;
+template DrivenState3 MagneticDriveFlight3::advance(const State&, const double&) const;
 template double MagneticDriveFlight3::speed_bound(const State&, const double&) const;
 template double MagneticDriveFlight3::exit_time(const State&, const PlaneWall&, double) const;
 template double MagneticDriveFlight3::exit_time(const State&, const TriangleWall&, double) const;

@@ -243,7 +243,7 @@ template FlightHit<FreeFlight3> Table3::collision(const FreeFlight3&, const Stat
 template FlightHit<PeriodicDriveFlight3> Table3::collision(const PeriodicDriveFlight3&, const DrivenState3&,
                                                            double) const;
 template FlightHit<MagneticFlight3> Table3::collision(const MagneticFlight3&, const State3&, double) const;
-template FlightHit<MagneticDriveFlight3> Table3::collision(const MagneticDriveFlight3&, const State3&, double) const;
+template FlightHit<MagneticDriveFlight3> Table3::collision(const MagneticDriveFlight3&, const DrivenState3&, double) const;
 
 State3 sample_microcanonical(const Table3& table, double speed, ParticleRng& rng) {
   const Vec3 size = table.hi() - table.lo();

@@ -122,8 +122,9 @@ struct SectionRows {
 };
 
 namespace detail {
-/// Runs every particle for `collisions` bounces, `record(i, hit, before, after, rows)`
-/// appending its rows; collects them in particle order.
+/// Runs every particle for `collisions` bounces, `record(i, hit, before, after, flown, rows)`
+/// appending its rows (`flown`: the flight from `before` on its own clock, collision.hpp's
+/// Flown); collects them in particle order.
 template <class Flight, class Initial, class Record>
 SectionRows collect(const dynamics::TableFor<Flight>& table, const Flight& flight, const Initial& initial, std::size_t particles,
                     std::size_t collisions, int threads, std::size_t columns, Record record,
@@ -137,10 +138,11 @@ SectionRows collect(const dynamics::TableFor<Flight>& table, const Flight& fligh
       [&](std::size_t i) {
         Part part;
         auto before = initial(i);
-        const std::size_t made = dynamics::evolve(table, flight, before, collisions, [&](const auto& hit, const auto& after) {
-          record(i, hit, before, after, part.rows);
-          before = after;
-        });
+        const std::size_t made =
+            dynamics::evolve(table, flight, before, collisions, [&](const auto& hit, const auto& after, const auto& flown) {
+              record(i, hit, before, after, flown, part.rows);
+              before = after;
+            });
         part.escaped = made < collisions;
         return part;
       },
@@ -160,7 +162,7 @@ SectionRows boundary_map(const dynamics::Table& table, const BoundaryCoordinates
                          double mass = 1, const std::function<void(std::size_t)>& progress = {}) {
   return detail::collect(
       table, flight, initial, particles, collisions, threads, bmap_columns.size(),
-      [&](std::size_t i, const auto& hit, const auto&, const auto& after, std::vector<double>& rows) {
+      [&](std::size_t i, const auto& hit, const auto&, const auto& after, const auto&, std::vector<double>& rows) {
         const double k = double(rows.size() / bmap_columns.size() + 1);
         rows.insert(rows.end(), {double(i), k, coordinates.s_of(table, hit), BoundaryCoordinates::p_of(after.v, hit.normal),
                                  double(after.t), dynamics::energy_of(flight, after, mass)});
@@ -190,16 +192,17 @@ double bisect(F&& f, double a, double b) {
   }
 }
 
-/// Times in (a, b) at which the flight's acceleration along n may change sign: none under a
-/// static force; the zeros of cos(ω t + phase0) under the periodic drive.
+/// Times in (s.t, b) at which the flight's acceleration along n may change sign: none under a
+/// static force; under the periodic drive the zeros of cos θ, θ = θ_s + ω (t − s.t) from the
+/// state's phase θ_s (in [0, 2π)).
 template <class Flight>
-std::vector<double> acceleration_turns(const Flight& flight, double a, double b) {
+std::vector<double> acceleration_turns(const Flight& flight, const typename Flight::State& s, double b) {
   std::vector<double> turns;
   if constexpr (requires { flight.omega; }) {
     const double half = geometry::pi / flight.omega;
-    const double first = (geometry::pi / 2 - flight.phase0) / flight.omega;
-    for (double k = std::ceil((a - first) / half); first + k * half < b; ++k)
-      if (first + k * half > a) turns.push_back(first + k * half);
+    const double first = s.t + (geometry::pi / 2 - double(s.phase)) / flight.omega;
+    for (double k = std::ceil((s.t - first) / half); first + k * half < b; ++k)
+      if (first + k * half > s.t) turns.push_back(first + k * half);
   }
   return turns;
 }
@@ -218,7 +221,7 @@ void upward_crossings(const Flight& flight, const typename Flight::State& before
   } else {
     const auto g = [&](double t) { return section.normal.dot(flight.advance(before, t).v); };
     std::vector<double> knots{double(before.t)};
-    for (const double t : acceleration_turns(flight, before.t, t_end)) knots.push_back(t);
+    for (const double t : acceleration_turns(flight, before, t_end)) knots.push_back(t);
     knots.push_back(t_end);
     for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
       std::vector<double> pieces{knots[k]};
@@ -234,7 +237,8 @@ void upward_crossings(const Flight& flight, const typename Flight::State& before
 
 /// The Poincaré section on a line (2-D, section_columns) or a plane (3-D, section3_columns),
 /// over `collisions` bounces of each particle: the upward crossings of every flight, found on
-/// the flight itself.
+/// the flight itself on its own clock (the state's t = 0 at its start), their times then
+/// made absolute.
 template <section_flight Flight, class Initial>
 SectionRows line_section(const dynamics::TableFor<Flight>& table, const Flight& flight,
                          const BasicSection<Flight::State::dimension>& section, const Initial& initial,
@@ -245,17 +249,19 @@ SectionRows line_section(const dynamics::TableFor<Flight>& table, const Flight& 
   const std::size_t columns = D == 2 ? section_columns.size() : section3_columns.size();
   return detail::collect(
       table, flight, initial, particles, collisions, threads, columns,
-      [&](std::size_t i, const auto& hit, const auto& before, const auto&, std::vector<double>& rows) {
+      [&](std::size_t i, const auto&, const auto& before, const auto&, const auto& flown, std::vector<double>& rows) {
+        auto start = before;
+        start.t = 0;
         std::vector<double> times;
-        detail::upward_crossings(flight, before, double(hit.t), section, times);
-        for (const double t : times) {
-          const auto at = flight.advance(before, t);
+        detail::upward_crossings(flight, start, double(flown.duration), section, times);
+        for (const double tau : times) {
+          const auto at = flight.advance(start, tau);
           const double k = double(rows.size() / columns + 1);
           rows.push_back(double(i));
           rows.push_back(k);
           for (const auto& e : basis) rows.push_back(e.dot(at.x));
           for (const auto& e : basis) rows.push_back(e.dot(at.v) / at.v.norm());
-          rows.push_back(t);
+          rows.push_back(flown.start.after(tau));
           rows.push_back(dynamics::energy_of(flight, at, mass));
         }
       },
@@ -271,7 +277,8 @@ concept driven_flight = requires(const Flight& f) {
 
 /// The stroboscopic section of a driven flight at drive phase `phase` (strobe_columns, in 3-D
 /// strobe3_columns): the state at every time t ≥ 0 with ω t + phase0 = phase (mod 2π), over
-/// `collisions` bounces.
+/// `collisions` bounces.  Each flight's strobe instants are found on its own clock, from the
+/// drive's phase its state carries: τ with θ_s + ω τ = phase (mod 2π).
 template <driven_flight Flight, class Initial>
 SectionRows stroboscopic_section(const dynamics::TableFor<Flight>& table, const Flight& flight, double phase,
                                  const Initial& initial, std::size_t particles, std::size_t collisions, int threads,
@@ -282,13 +289,16 @@ SectionRows stroboscopic_section(const dynamics::TableFor<Flight>& table, const 
   constexpr bool in_3d = dynamics::is_3d<Flight>;
   return detail::collect(
       table, flight, initial, particles, collisions, threads, in_3d ? strobe3_columns.size() : strobe_columns.size(),
-      [&](std::size_t i, const auto& hit, const auto& before, const auto&, std::vector<double>& rows) {
-        for (double k = std::ceil((before.t - first) / period);; ++k) {
-          const double t = first + k * period;
-          if (t < before.t) continue;
-          if (t >= hit.t) break;
-          const auto at = flight.advance(before, t);
-          rows.insert(rows.end(), {double(i), k});
+      [&](std::size_t i, const auto&, const auto& before, const auto&, const auto& flown, std::vector<double>& rows) {
+        auto start = before;
+        start.t = 0;
+        const double tau0 = double(dynamics::reduce_phase(dynamics::Phase(phase) - start.phase)) / flight.omega;
+        for (double j = 0;; ++j) {
+          const double tau = tau0 + j * period;
+          if (tau >= flown.duration) break;
+          const auto at = flight.advance(start, tau);
+          const double t = flown.start.after(tau);
+          rows.insert(rows.end(), {double(i), std::round((t - first) / period)});
           rows.insert(rows.end(), at.x.data(), at.x.data() + at.x.size());
           rows.insert(rows.end(), at.v.data(), at.v.data() + at.v.size());
           rows.insert(rows.end(), {t, dynamics::energy_of(flight, at, mass)});

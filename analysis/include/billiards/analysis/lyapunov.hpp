@@ -178,8 +178,10 @@ typename Flight::State carry_tangent(const dynamics::TableFor<Flight>& table, co
                                      BasicTangentBasis<dimension_of<Flight>>& q, std::size_t& made, After&& after) {
   constexpr int D = dimension_of<Flight>;
   typename Flight::State last = s;
-  made = dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto& bounced) {
-    tangent_flight_step(flight, q, double(hit.t - last.t));
+  // (Over each flight's duration on its own clock: a difference of absolute times would be
+  // rounded to ulp(t).)
+  made = dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto& bounced, const auto& flown) {
+    tangent_flight_step(flight, q, double(flown.duration));
     const double kappa = table.curvature_at(hit.wall, hit.point);
     q = collision_jacobian<D>(hit.state.v, hit.normal, kappa, acceleration_at(flight, hit.state),
                               acceleration_at(flight, bounced)) *

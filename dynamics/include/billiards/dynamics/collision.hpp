@@ -175,25 +175,15 @@ void bounce(const Flight& flight, typename Flight::State& s, const HitT& hit) {
   s.v = reflect(s.v, hit.normal);
 }
 
-/// Does the flight's law depend on the absolute time, not only on the time since its start (a
-/// flight that does not carry its drive's phase in its state)?  Such a flight keeps the
-/// absolute time in its state's t: `restart_clock` leaves it there.
-template <class Flight>
-inline constexpr bool reads_absolute_time = [] {
-  if constexpr (requires { Flight::reads_absolute_time; }) return Flight::reads_absolute_time;
-  else return false;
-}();
-
 /// Starts the particle's next flight on its own clock: the time of the flight just made moves
 /// from the state (its t) to the run's clock, and the state's t becomes 0.  The collision
 /// loops do this after every bounce, so that a flight's times are resolved to its own rounding
-/// however long the run (state.hpp's BasicClock).
+/// however long the run (state.hpp's BasicClock).  Every flight's law reads only the time since
+/// its start: a drive's phase is carried in the state (forced_flight.hpp's BasicDrivenState).
 template <class Flight>
 void restart_clock(const Flight&, typename Flight::State& s, BasicClock<typename Flight::Scalar>& clock) {
-  if constexpr (!reads_absolute_time<Flight>) {
-    clock.add(s.t);
-    s.t = 0;
-  }
+  clock.add(s.t);
+  s.t = 0;
 }
 
 /// A hit (and the flight's state at it) or a state as callers see it: its time absolute, the
@@ -205,23 +195,38 @@ T on_clock(T event, const Clock& clock) {
   return event;
 }
 
+/// A flight as it was made on its own clock: its duration (the hit's time on the flight's
+/// clock, which started at 0) and the run's clock at its start.  What a visitor of `evolve`
+/// needs to work inside a flight (a tangent flow over its duration, a section's crossings)
+/// without differences of absolute times, which would be rounded to ulp(t).
+template <class Real>
+struct Flown {
+  Real duration;
+  const BasicClock<Real>& start;
+};
+
 /// Follows the particle from `s` through its next `collisions` bounces (fewer if it meets no
 /// wall: an escape), calling visit(hit, state) with the state just after each bounce, times
-/// absolute; energy-conserving flights restore the speed after every bounce.  Each flight runs
-/// on its own clock (restart_clock).  Returns the bounces made.  Any table (2-D or 3-D):
+/// absolute (or visit(hit, state, flown) with the flight's Flown too, when it takes three
+/// arguments); energy-conserving flights restore the speed after every bounce.  Each flight
+/// runs on its own clock (restart_clock).  Returns the bounces made.  Any table (2-D or 3-D):
 /// `collision` and `bounce` are found by overload resolution.
 template <class TableT, class Flight, class Visit>
 std::size_t evolve(const TableT& table, const Flight& flight, typename Flight::State s, std::size_t collisions,
                    Visit&& visit) {
+  using Real = typename Flight::Scalar;
   const auto v2 = s.v.squaredNorm();
-  BasicClock<typename Flight::Scalar> clock;
+  BasicClock<Real> clock;
   restart_clock(flight, s, clock);
   for (std::size_t k = 0; k < collisions; ++k) {
     const auto hit = collision(table, flight, s);
     if (!hit.found()) return k;
     bounce(flight, s, hit);
     if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
-    visit(on_clock(hit, clock), on_clock(s, clock));
+    if constexpr (std::is_invocable_v<Visit&, decltype(on_clock(hit, clock)), decltype(on_clock(s, clock)), Flown<Real>>)
+      visit(on_clock(hit, clock), on_clock(s, clock), Flown<Real>{s.t, clock});
+    else
+      visit(on_clock(hit, clock), on_clock(s, clock));
     restart_clock(flight, s, clock);
   }
   return collisions;

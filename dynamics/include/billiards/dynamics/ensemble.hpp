@@ -7,6 +7,7 @@
 #include "billiards/dynamics/first_error.hpp"
 #include "billiards/dynamics/lockstep.hpp"
 #include "billiards/dynamics/random.hpp"
+#include "billiards/geometry/input_error.hpp"
 
 #include <boost/container/static_vector.hpp>
 #include <omp.h>
@@ -16,10 +17,19 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <vector>
 
 namespace billiards::dynamics {
+
+/// A failure inside one particle's run (a field the integrator cannot follow, a root search
+/// that does not converge): its message names the particle and the time its flight started,
+/// "particle 17, in its flight from t = 0.43: the force is not finite at ...".
+struct ParticleError : std::runtime_error {
+  ParticleError(std::size_t particle, double t, const std::string& cause);
+};
 
 /// What happened to one particle.
 struct ParticleLog {
@@ -241,6 +251,19 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
   if (progress) progress(done);
 }
 
+/// run.step() of particle i; a runtime error it throws becomes a ParticleError naming the
+/// particle and the time its flight started (bad input, InputError, passes as it is).
+template <class Run>
+bool step_particle(Run& run, std::size_t i) {
+  try {
+    return run.step();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw ParticleError(i, run.clock().after(0), e.what());
+  }
+}
+
 /// Runs particles [first, last) of an ensemble.  `initial(i)` gives particle i's state (it
 /// must depend on i only); `progress(done)` is called from one thread now and then.  An exception
 /// thrown for a particle stops the run and is rethrown after it (first_error.hpp; in lock step,
@@ -269,7 +292,7 @@ void run_particles(const TableT& table, const Flight& flight, const Initial& ini
     std::size_t active = runs.size();
     while (active > 0 && !stop.stopped()) {
       active = 0;
-      for (auto& r : runs) active += r.step();
+      for (std::size_t j = 0; j < runs.size(); ++j) active += step_particle(runs[j], lo + j);
     }
     for (std::size_t i = lo; i < hi; ++i) out.logs[i] = runs[i - lo].log();
     const std::size_t d = done += hi - lo;

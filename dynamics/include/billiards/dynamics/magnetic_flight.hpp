@@ -23,6 +23,7 @@
 
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/flight.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/table3.hpp"
 
 #include <type_traits>
@@ -134,21 +135,25 @@ using MagneticFlight3 = BasicMagneticFlight<double, 3>;
 /// the certified scan, with |v| bounded by
 /// |v0| + (|a⊥|/2)(min(τ, 2/|Ω + ω|) + min(τ, 2/|Ω − ω|)) + |a∥| min(τ, 2/ω).
 /// The search needs a horizon (t_end finite): a bounded orbit may circle forever.
+/// The state carries the drive's phase θ (as the periodic drive's, forced_flight.hpp: two
+/// doubles, reduced, with its sine and cosine), so that each flight runs on its own clock: θ
+/// as ω t + φ0 from an absolute t in one double would keep only ulp(ω t) (3e-9 rad at
+/// ω = 40π, t = 10⁶).
 template <class Real, int D = 2>
 struct BasicMagneticDriveFlight {
   using Scalar = Real;
-  using State = BasicState<Real, D>;
+  using State = BasicDrivenState<Real, D>;
   static constexpr bool conserves_energy = false;
-  /// The drive's phase is ω t + phase0 from the state's t (collision.hpp's restart_clock leaves
-  /// the absolute time there).
-  static constexpr bool reads_absolute_time = true;
 
   Cyclotron<Real, D> omega_c;  // Ω = qB/m
   VecN<Real, D> accel;         // F/m
   Real omega = 0;              // ω (0: a static force)
   Real phase0 = 0;             // φ0
 
-  State start(const State& s) const { return s; }
+  /// The state at s with the drive's phase ω s.t + φ0.
+  State start(const BasicState<Real, D>& s) const {
+    return BasicPeriodicDriveFlight<Real, D>{accel, omega, phase0}.start(s);
+  }
   State advance(const State& s, const Real& t) const;
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
   Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
