@@ -28,9 +28,18 @@ namespace {
 
 using dynamics::Scene;
 
+/// Refuses a magnetic field with a force for a function that follows particles collision by
+/// collision without a time horizon (as the CLI's refuse_forced_magnetic).
+void refuse_forced_magnetic(const Scene& scene) {
+  if (scene.searches_to_a_horizon())
+    throw py::value_error("a magnetic field with a force needs a time horizon for its collision search; this "
+                          "function follows particles collision by collision (bk.run follows them to its times, "
+                          "bk.lyapunov to successive horizons)");
+}
+
 /// A Shape or Shape3 as a free scene at speed 1 with `particles` microcanonical particles (as
 /// the CLI's load_phase_space_scene), or a Scene with its own (particles overriding its count
-/// when given); a magnetic field with a force is refused (as refuse_forced_magnetic).
+/// when given).
 Scene scene_of(const py::object& table, std::optional<std::size_t> particles, std::optional<std::uint64_t> seed) {
   Scene scene;
   const bool shape = py::isinstance<geometry::Shape>(table), shape3 = py::isinstance<geometry3::Shape3>(table);
@@ -47,10 +56,6 @@ Scene scene_of(const py::object& table, std::optional<std::size_t> particles, st
     return scene;
   }
   scene = table.cast<Scene>();
-  if (scene.searches_to_a_horizon())
-    throw py::value_error("a magnetic field with a force needs a time horizon for its collision search; the "
-                          "phase-space functions follow particles collision by collision (bk.run follows them to "
-                          "its times)");
   if (particles) {
     const std::size_t given = scene.dimension() == 3 ? scene.initial_states<3>().size() : scene.initial_states<2>().size();
     if (given > 0 && *particles > given)
@@ -68,6 +73,7 @@ py::array_t<double> rows_array(const analysis::SectionRows& r) {
 py::array_t<double> boundary_map(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
                                  std::optional<std::uint64_t> seed, int threads) {
   const Scene scene = scene_of(table, particles, seed);
+  refuse_forced_magnetic(scene);
   if (scene.dimension() == 3)
     throw py::value_error("a 3-D table has no boundary map (Birkhoff coordinates need a curve): its plane sections "
                           "are `billiard bmap --section`'s");
@@ -126,9 +132,10 @@ py::dict lyapunov(const py::object& table, std::optional<std::size_t> particles,
         return analysis::lyapunov_spectrum(t, flight, dynamics::initial_states(scene, t, flight), scene.particles,
                                            collisions, threads);
       } else {
-        throw py::value_error(fmt::format("no tangent dynamics for the force '{}'{} (free, constant, periodic and a "
-                                          "magnetic field alone only)",
-                                          scene.force.name(), scene.magnetic() ? " in a magnetic field" : ""));
+        throw py::value_error(fmt::format("no tangent dynamics for the force '{}'{}: Lyapunov exponents are "
+                                          "computed for {}",
+                                          scene.force.name(), scene.potential ? " with a potential" : "",
+                                          analysis::tangent_flights_named));
         return analysis::LyapunovSpectrum{};
       }
     });
@@ -167,6 +174,7 @@ py::array_t<T> array_of(const std::vector<T>& v) {
 py::dict escape(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
                 std::optional<std::uint64_t> seed, bool entering, int threads) {
   Scene scene = scene_of(table, particles, seed);
+  refuse_forced_magnetic(scene);
   if (entering) scene.through_exit = geometry::SourceRef{"entering=True", 0};
   // The exits of the table's dimension: arcs of the boundary (2-D, total length) or discs on
   // faces (3-D, total area), as `billiard escape` reads them.
