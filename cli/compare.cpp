@@ -89,9 +89,9 @@ struct Fit {
   analysis::HistogramL1 l1;                // Σ|p̂ − p| over its bins, and its noise level
 };
 
-/// The fit at record time k from the energies at every record time (energies_by_time).
-Fit fit_at(const RunOutcome& run, const std::vector<std::vector<double>>& by_time, std::size_t k, const Law& law,
-           std::size_t bins) {
+/// The fit at record time k from the run's energies at every record time.
+Fit fit_at(const RunOutcome& run, std::size_t k, const Law& law, std::size_t bins) {
+  const auto& by_time = run.by_time;
   const auto& c = *run.prediction;
   const double t = run.scene.record_times[k];
   Fit f;
@@ -173,11 +173,10 @@ void compare(const CompareArgs& args) {
   const auto run = run_ensemble(scene, args);
   if (!run || !ranks().root()) return;
   // One record time per thread: each fit reads the shared result and writes its own entry.
-  const auto by_time = energies_by_time(run->result, scene.record_times.size());
   std::vector<Fit> fits(scene.record_times.size() - 1);
   const int threads = args.threads > 0 ? args.threads : std::min(omp_get_max_threads(), max_threads);
 #pragma omp parallel for schedule(dynamic) num_threads(threads)
-  for (std::size_t k = 1; k < scene.record_times.size(); ++k) fits[k - 1] = fit_at(*run, by_time, k, fp.laws[k - 1], args.bins);
+  for (std::size_t k = 1; k < scene.record_times.size(); ++k) fits[k - 1] = fit_at(*run, k, fp.laws[k - 1], args.bins);
   nlohmann::json times = nlohmann::json::array();
   for (const auto& f : fits) times.push_back(to_json(f, scene.energy));
 

@@ -44,15 +44,11 @@ struct RunOutcome {
   dynamics::Scene scene;
   std::optional<analysis::Coefficients> prediction;
   dynamics::EnsembleResult result;
-  nlohmann::json summary;  // summary.json
+  std::vector<std::vector<double>> by_time;  // E(t_k) of every particle that did not escape, by k
+  nlohmann::json summary;                    // summary.json
 };
 
-/// E(t_k) of every particle that did not escape, a column per record time k (m of them), in
-/// particle order: one sweep over the particles' rows, where EnsembleResult::energies_at reads
-/// the whole table once per record time (a cache line per particle each time: at N = 10⁶ and
-/// 21 record times, more than the statistics themselves).
-std::vector<std::vector<double>> energies_by_time(const dynamics::EnsembleResult& r, std::size_t m);
-/// E(t_k) − E(t_0) from those columns: EnsembleResult::energy_changes(k, m), to the bit.
+/// E(t_k) − E(t_0) from RunOutcome::by_time: EnsembleResult::energy_changes(k, m), to the bit.
 std::vector<double> energy_changes(const std::vector<std::vector<double>>& by_time, std::size_t k);
 
 /// Prints the prediction, runs the ensemble (resuming from a checkpoint) and summarizes it;

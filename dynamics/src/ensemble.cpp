@@ -40,7 +40,11 @@ template <class Allowed>
 Vec2 uniform_point(const Table& table, ParticleRng& rng, Allowed allowed) {
   const Vec2 lo = table.lo(), size = table.hi() - table.lo();
   for (long tries = 0; tries < 100000000; ++tries) {
-    const Vec2 x = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
+    // The draws in a fixed order, y before x (the order of every run so far): the order in
+    // which a constructor's arguments are evaluated is the compiler's choice (GCC on x86-64
+    // right to left, on aarch64 and clang left to right).
+    const double uy = rng.uniform(), ux = rng.uniform();
+    const Vec2 x = lo + Vec2(ux * size.x(), uy * size.y());
     if (table.contains(x) && allowed(x)) return x;
   }
   throw std::runtime_error("no allowed point found in the region after 1e8 samples");

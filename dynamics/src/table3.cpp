@@ -249,7 +249,8 @@ State3 sample_microcanonical(const Table3& table, double speed, ParticleRng& rng
   const Vec3 size = table.hi() - table.lo();
   State3 s;
   do {
-    s.x = table.lo() + Vec3(rng.uniform(), rng.uniform(), rng.uniform()).cwiseProduct(size);
+    const double uz = rng.uniform(), uy = rng.uniform(), ux = rng.uniform();  // (in this order: ensemble.cpp)
+    s.x = table.lo() + Vec3(ux, uy, uz).cwiseProduct(size);
   } while (!contains(table.region(), s.x));
   const double z = 2 * rng.uniform() - 1, phi = 2 * geometry::pi * rng.uniform();
   const double rho = std::sqrt(std::max(0.0, 1 - z * z));
