@@ -236,7 +236,7 @@ std::size_t evolve_to_horizons(const dynamics::TableFor<Flight>& table, const Fl
   dynamics::restart_clock(flight, s, clock);
   for (std::size_t k = 0; k < collisions; ++k) {
     auto hit = dynamics::collision(table, flight, s, s.t + step);
-    for (int turns = 1; !hit.found() && turns < wall_free_periods * horizons_per_period; ++turns) {
+    for (int horizons = 1; !hit.found() && horizons < wall_free_periods * horizons_per_period; ++horizons) {
       s = flight.advance(s, s.t + step);
       hit = dynamics::collision(table, flight, s, s.t + step);
     }
