@@ -2,9 +2,11 @@
 // run on one core: `evolve` alone (the collision search and the bounce), the boundary map
 // (plus s and p of every hit) and the tangent dynamics of `lyapunov` (plus the collision
 // Jacobian and a 4 × 4 Gram–Schmidt per collision; 6 × 6 in 3-D); free flights in three
-// tables, the driven clover and the stadium in a magnetic field, and in 3-D free flights in
-// the Sinai cube and the ball, the driven Sinai cube and the Sinai cube in a magnetic field
-// (no boundary map in 3-D).
+// tables, the driven clover (lab and quivering walls, and in a magnetic field) and the stadium
+// in a magnetic field, and in 3-D free flights in the Sinai cube and the ball, the driven Sinai
+// cube and the Sinai cube in a magnetic field, alone and driven (no boundary map in 3-D, nor
+// for a field with a force, followed to successive horizons: `evolve_to_horizons` is the
+// plain run there).
 // Usage: bench_lyapunov [collisions per case, default 2e6]
 #include "billiards/analysis/boundary_map.hpp"
 #include "billiards/analysis/lyapunov.hpp"
@@ -34,11 +36,17 @@ void compare(const std::string& name, const dynamics::TableFor<Flight>& table, c
              const Flight& flight, const typename Flight::State& s, std::size_t collisions) {
   double sink = 0;
   const double plain = seconds_of([&] {
-    dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto&) { sink += hit.t; });
+    const auto visit = [&](const auto& hit, const auto&) { sink += hit.t; };
+    if constexpr (analysis::horizon_flight<Flight>) {
+      auto from = s;
+      analysis::evolve_to_horizons(table, flight, from, collisions, visit);
+    } else {
+      dynamics::evolve(table, flight, s, collisions, visit);
+    }
   });
   const double n = double(collisions);
   std::string bmap_cell = "—";
-  if constexpr (!dynamics::is_3d<Flight>) {
+  if constexpr (!dynamics::is_3d<Flight> && !analysis::horizon_flight<Flight>) {
     const double bmap = seconds_of([&] {
       const auto r =
           analysis::boundary_map(table, *coordinates, flight, [&](std::size_t) { return s; }, 1, collisions, 1);
@@ -71,6 +79,14 @@ int main(int argc, char** argv) {
   const dynamics::PeriodicDriveFlight drive{scene.force.amplitude / scene.mass, scene.force.omega, scene.force.phase};
   compare("clover (driven)", table, &coordinates, drive, dynamics::initial_states(scene, table, drive)(0),
           collisions / 10);
+  const dynamics::QuiveringWallFlight quiver{drive.accel, drive.omega, drive.phase0};
+  compare("clover (quivering walls)", table, &coordinates, quiver, quiver.start(dynamics::initial_states(scene, table, drive)(0)),
+          collisions / 10);
+  const auto forced = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/clover-magnetic-driven.yaml");
+  const dynamics::MagneticDriveFlight forced_field{forced.cyclotron_frequency(), forced.force.amplitude / forced.mass,
+                                                   forced.force.omega, forced.force.phase};
+  compare("clover (driven, magnetic)", table, &coordinates, forced_field,
+          dynamics::initial_states(forced, table, forced_field)(0), collisions / 10);
   const auto stadium = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/stadium-magnetic.yaml");
   const dynamics::Table stadium_table(stadium.shape<2>().region);
   const analysis::BoundaryCoordinates stadium_coordinates(stadium.shape<2>().region);
@@ -95,4 +111,11 @@ int main(int argc, char** argv) {
   compare<dynamics::MagneticFlight3, void>("sinai3 3-D (magnetic)", magnetic_table3, nullptr, helix,
                                            dynamics::initial_states(magnetic3, magnetic_table3, helix)(0),
                                            collisions / 10);
+  const auto forced3 = dynamics::load_scene(BILLIARDS_SOURCE_DIR "/scenes/sinai3-magnetic-driven.yaml");
+  const dynamics::MagneticDriveFlight3 forced_helix{forced3.cyclotron_vector(), forced3.force.amplitude / forced3.mass,
+                                                    forced3.force.omega, forced3.force.phase};
+  compare<dynamics::MagneticDriveFlight3, void>("sinai3 3-D (driven, magnetic)", magnetic_table3, nullptr,
+                                                forced_helix,
+                                                dynamics::initial_states(forced3, magnetic_table3, forced_helix)(0),
+                                                collisions / 10);
 }

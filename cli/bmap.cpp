@@ -33,38 +33,6 @@ struct BmapArgs : PhaseSpaceArgs {
   bool csv = true;
 };
 
-/// "LHS = RHS", linear in x and y (and z in 3-D): the hyperplane n·x = c with n a unit vector.
-template <int D>
-analysis::BasicSection<D> parse_section(const std::string& text) {
-  using V = Eigen::Matrix<double, D, 1>;
-  const char* names[] = {"x", "y", "z"};
-  const auto eq = text.find('=');
-  const auto fail = [&](const std::string& why) { return InputError("--section '" + text + "'", 0, why); };
-  if (eq == std::string::npos || text.find('=', eq + 1) != std::string::npos)
-    throw fail(D == 2 ? "a section is one equation of a line in x and y, such as \"y = 0\" or \"x + 2*y = 1\""
-                      : "a 3-D section is one equation of a plane in x, y and z, such as \"z = 0\" or \"x + y = 0.2\"");
-  const auto f = [&](const V& x) {
-    Expressions e;
-    for (int k = 0; k < D; ++k) e.define(names[k], fmt::format("{:.17g}", x[k]), "--section", 0);
-    return e.evaluate("(" + text.substr(0, eq) + ") - (" + text.substr(eq + 1) + ")", "--section", 0);
-  };
-  const double c = -f(V::Zero());
-  V a;
-  for (int k = 0; k < D; ++k) a[k] = f(V::Unit(k)) + c;
-  const double norm = a.norm();
-  for (const double scale : {1.0, -2.3, 1e3}) {
-    V x;
-    for (int k = 0; k < D; ++k) x[k] = scale * std::sin(1.7 + 2.9 * k);
-    const double linear = a.dot(x) - c;
-    if (!(std::abs(f(x) - linear) <= 1e-9 * (std::abs(linear) + norm * x.cwiseAbs().sum() + std::abs(c))))
-      throw fail(D == 2 ? "the equation is not linear in x and y: a section is a straight line"
-                        : "the equation is not linear in x, y and z: a 3-D section is a plane");
-  }
-  if (!(norm > 0)) throw fail(D == 2 ? "the equation does not depend on x or y: it is no line"
-                                     : "the equation does not depend on x, y or z: it is no plane");
-  return {a / norm, c / norm};
-}
-
 /// The CSV of rows with the given columns (particle and counters as whole numbers).
 template <std::size_t N>
 void write_rows_csv(std::ostream& out, const SectionRows& r, const std::array<const char*, N>& columns) {
@@ -96,7 +64,7 @@ Section compute(const dynamics::Scene& scene, const Flight& flight, const BmapAr
   const std::size_t n = scene.particles, k = args.collisions;
   if (!args.section.empty()) {
     if constexpr (analysis::section_flight<Flight>)
-      return {D == 2 ? "section" : "section3", analysis::line_section(table, flight, parse_section<D>(args.section),
+      return {D == 2 ? "section" : "section3", analysis::line_section(table, flight, analysis::parse_section<D>(args.section, "--section"),
                                                                       initial, n, k, args.threads, scene.mass, tick)};
     throw InputError("--section", 0,
                      fmt::format("a section is drawn for free flights and a uniform force, static or periodic (lab "
@@ -148,8 +116,8 @@ void run_bmap(const BmapArgs& args) {
   auto scene = load_phase_space_scene(args);
   refuse_forced_magnetic(scene, "billiard bmap");
   if (!args.section.empty()) {  // (before any work)
-    if (scene.dimension() == 3) parse_section<3>(args.section);
-    else parse_section<2>(args.section);
+    if (scene.dimension() == 3) analysis::parse_section<3>(args.section, "--section");
+    else analysis::parse_section<2>(args.section, "--section");
   }
   const std::string out_dir = !args.out.empty() ? args.out : scene.output_dir + "-bmap";
   OutputDir::require_creatable(out_dir);

@@ -69,10 +69,10 @@ AnySpectrum lyapunov_of(const dynamics::Scene& scene, const PhaseSpaceArgs& args
                                          args.collisions, args.threads, [&](std::size_t d) { progress.update(d); });
     } else {
       throw InputError(scene.file, 0,
-                       fmt::format("Lyapunov exponents are computed for free flights, the uniform periodic drive "
-                                   "(lab picture) and a magnetic field alone in 2-D and 3-D, and a static force in "
-                                   "2-D; not for this scene (force {}{})",
-                                   scene.force.name(), scene.magnetic() ? ", magnetic" : ""));
+                       fmt::format("Lyapunov exponents are computed for {}; not for a position-dependent force or "
+                                   "a potential (this scene: force {}{})",
+                                   analysis::tangent_flights_named, scene.force.name(),
+                                   scene.potential ? ", a potential" : ""));
     }
   });
   progress.finish();

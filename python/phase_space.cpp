@@ -1,7 +1,7 @@
 // billiardkit's phase-space functions: boundary_map, lyapunov, chaos and escape, on a Shape or a
 // Shape3 (free flights at speed 1) or a Scene (its force, energy and seed), with the numbers of
 // `billiard bmap`, `billiard lyapunov`, `billiard chaos` and `billiard escape`; like the CLI,
-// boundary_map refuses 3-D tables (no Birkhoff coordinates on a surface).
+// boundary_map gives a 3-D table's plane sections only (no Birkhoff coordinates on a surface).
 #include "billiards/analysis/boundary_map.hpp"
 #include "billiards/analysis/chaos.hpp"
 #include "billiards/analysis/escape.hpp"
@@ -17,6 +17,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <variant>
 
 namespace py = pybind11;
@@ -28,9 +29,18 @@ namespace {
 
 using dynamics::Scene;
 
+/// Refuses a magnetic field with a force for a function that follows particles collision by
+/// collision without a time horizon (as the CLI's refuse_forced_magnetic).
+void refuse_forced_magnetic(const Scene& scene) {
+  if (scene.searches_to_a_horizon())
+    throw py::value_error("a magnetic field with a force needs a time horizon for its collision search; this "
+                          "function follows particles collision by collision (bk.run follows them to its times, "
+                          "bk.lyapunov to successive horizons)");
+}
+
 /// A Shape or Shape3 as a free scene at speed 1 with `particles` microcanonical particles (as
 /// the CLI's load_phase_space_scene), or a Scene with its own (particles overriding its count
-/// when given); a magnetic field with a force is refused (as refuse_forced_magnetic).
+/// when given).
 Scene scene_of(const py::object& table, std::optional<std::size_t> particles, std::optional<std::uint64_t> seed) {
   Scene scene;
   const bool shape = py::isinstance<geometry::Shape>(table), shape3 = py::isinstance<geometry3::Shape3>(table);
@@ -47,10 +57,6 @@ Scene scene_of(const py::object& table, std::optional<std::size_t> particles, st
     return scene;
   }
   scene = table.cast<Scene>();
-  if (scene.searches_to_a_horizon())
-    throw py::value_error("a magnetic field with a force needs a time horizon for its collision search; the "
-                          "phase-space functions follow particles collision by collision (bk.run follows them to "
-                          "its times)");
   if (particles) {
     const std::size_t given = scene.dimension() == 3 ? scene.initial_states<3>().size() : scene.initial_states<2>().size();
     if (given > 0 && *particles > given)
@@ -65,24 +71,44 @@ py::array_t<double> rows_array(const analysis::SectionRows& r) {
   return py::array_t<double>({py::ssize_t(r.row_count()), py::ssize_t(r.columns)}, r.rows.data());
 }
 
+/// The boundary map (2-D), or with `section` the Poincaré section on that line (2-D) or plane
+/// (3-D), as `billiard bmap [--section]` computes them.
 py::array_t<double> boundary_map(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
-                                 std::optional<std::uint64_t> seed, int threads) {
+                                 std::optional<std::uint64_t> seed, int threads, std::optional<std::string> section) {
   const Scene scene = scene_of(table, particles, seed);
-  if (scene.dimension() == 3)
-    throw py::value_error("a 3-D table has no boundary map (Birkhoff coordinates need a curve): its plane sections "
-                          "are `billiard bmap --section`'s");
-  const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
+  refuse_forced_magnetic(scene);
+  if (scene.dimension() == 3 && !section)
+    throw py::value_error("a 3-D table has no boundary map (Birkhoff coordinates need a curve): give a plane section, "
+                          "such as section=\"z = 0\" (`billiard bmap --section`)");
+  std::optional<analysis::SectionLine> line;
+  std::optional<analysis::SectionPlane> plane;
+  if (section && scene.dimension() == 3) plane = analysis::parse_section<3>(*section, "section");
+  else if (section) line = analysis::parse_section<2>(*section, "section");
   analysis::SectionRows rows;
   {
     py::gil_scoped_release unlocked;
-    rows = dynamics::with_flight(scene, [&](const auto& flight) {
+    rows = dynamics::with_flight(scene, [&](const auto& flight) -> analysis::SectionRows {
       using Flight = std::decay_t<decltype(flight)>;
+      const auto t = dynamics::table_of<Flight>(scene);
+      const auto initial = dynamics::initial_states(scene, t, flight);
+      if (section) {
+        if constexpr (analysis::section_flight<Flight>) {
+          if constexpr (dynamics::is_3d<Flight>)
+            return analysis::line_section(t, flight, *plane, initial, scene.particles, collisions, threads, scene.mass);
+          else
+            return analysis::line_section(t, flight, *line, initial, scene.particles, collisions, threads, scene.mass);
+        } else {
+          throw py::value_error(fmt::format("a section is drawn for {}; not for this scene (force {}{})",
+                                            analysis::section_flights_named, scene.force.name(),
+                                            scene.magnetic() ? ", magnetic" : ""));
+        }
+      }
       if constexpr (dynamics::is_3d<Flight>) {
-        return analysis::SectionRows{};  // (refused above)
+        return {};  // (refused above)
       } else {
-        const auto t = dynamics::table_of<Flight>(scene);
-        return analysis::boundary_map(t, coordinates, flight, dynamics::initial_states(scene, t, flight),
-                                      scene.particles, collisions, threads, scene.mass);
+        const analysis::BoundaryCoordinates coordinates(scene.shape<2>().region);
+        return analysis::boundary_map(t, coordinates, flight, initial, scene.particles, collisions, threads,
+                                      scene.mass);
       }
     });
   }
@@ -126,9 +152,10 @@ py::dict lyapunov(const py::object& table, std::optional<std::size_t> particles,
         return analysis::lyapunov_spectrum(t, flight, dynamics::initial_states(scene, t, flight), scene.particles,
                                            collisions, threads);
       } else {
-        throw py::value_error(fmt::format("no tangent dynamics for the force '{}'{} (free, constant, periodic and a "
-                                          "magnetic field alone only)",
-                                          scene.force.name(), scene.magnetic() ? " in a magnetic field" : ""));
+        throw py::value_error(fmt::format("no tangent dynamics for the force '{}'{}: Lyapunov exponents are "
+                                          "computed for {}",
+                                          scene.force.name(), scene.potential ? " with a potential" : "",
+                                          analysis::tangent_flights_named));
         return analysis::LyapunovSpectrum{};
       }
     });
@@ -167,6 +194,7 @@ py::array_t<T> array_of(const std::vector<T>& v) {
 py::dict escape(const py::object& table, std::optional<std::size_t> particles, std::size_t collisions,
                 std::optional<std::uint64_t> seed, bool entering, int threads) {
   Scene scene = scene_of(table, particles, seed);
+  refuse_forced_magnetic(scene);
   if (entering) scene.through_exit = geometry::SourceRef{"entering=True", 0};
   // The exits of the table's dimension: arcs of the boundary (2-D, total length) or discs on
   // faces (3-D, total area), as `billiard escape` reads them.
@@ -221,9 +249,12 @@ py::dict escape(const py::object& table, std::optional<std::size_t> particles, s
 
 void def_phase_space(py::module_& m) {
   m.def("boundary_map", &boundary_map, "table"_a, py::kw_only(), "particles"_a = py::none(), "collisions"_a = 1000,
-        "seed"_a = py::none(), "threads"_a = 0,
+        "seed"_a = py::none(), "threads"_a = 0, "section"_a = py::none(),
         R"(The boundary map of a Shape (free, speed 1) or a 2-D Scene: an array (particles x collisions, 6) with
-columns particle, collision, s, p, t, energy -- `billiard bmap`'s bmap.npy (docs/phase-space.md).)");
+columns particle, collision, s, p, t, energy -- `billiard bmap`'s bmap.npy (docs/phase-space.md).  With
+section="y = 0" (a line; in 3-D a plane, "z = 0", of a Shape3 or a 3-D Scene) the Poincare section instead:
+rows particle, crossing, u, p, t, energy (3-D: particle, crossing, u1, u2, p1, p2, t, energy), `billiard bmap
+--section`'s section.npy or section3.npy.)");
   m.def("lyapunov", &lyapunov, "table"_a, py::kw_only(), "particles"_a = py::none(), "collisions"_a = 20000,
         "seed"_a = py::none(), "threads"_a = 0,
         "Lyapunov exponents from tangent dynamics: `billiard lyapunov --json`'s keys, and per_trajectory arrays.");

@@ -1,8 +1,9 @@
 // Lyapunov exponents of 3-D tables (analysis/lyapunov.hpp with D = 3) against what is known
-// without that code: the tangent map against finite differences (free flights and helices in a
-// magnetic field), a vanishing maximal exponent in the cube and the ball, the conjugate pairing
-// of the six exponents, and the 3-D Sinai table's maximal exponent, free and in a field, from
-// the divergence of two nearby orbits, renormalised (phase_space_helpers.hpp).
+// without that code: the tangent map against finite differences (free flights, helices in a
+// magnetic field, alone and under a static force or the drive), a vanishing maximal exponent in
+// the cube and the ball, the conjugate pairing of the six exponents, and the 3-D Sinai table's
+// maximal exponent, free, in a field and in a field with a force, from the divergence of two
+// nearby orbits, renormalised (phase_space_helpers.hpp).
 #include "cli_helpers.hpp"
 #include "phase_space_helpers.hpp"
 
@@ -63,7 +64,9 @@ void check_against_finite_differences(const Flight& flight) {
       sphere_hits += hit.wall.kind == dynamics::wall_kind3::sphere;
     });
     REQUIRE(made == 5);
-    const double t_end = 0.5 * (end.t + dynamics::collision(table, flight, end).t);
+    const auto next = dynamics::collision(table, flight, end, end.t + 100);  // (a horizon flight needs one)
+    REQUIRE(next.found());
+    const double t_end = 0.5 * (end.t + next.t);
     analysis::tangent_flight_step(flight, q, t_end - end.t);
     const double h = 1e-7;
     for (int j = 0; j < 6; ++j) {
@@ -81,8 +84,17 @@ void check_against_finite_differences(const Flight& flight) {
   CHECK(sphere_hits >= 3);  // (the ball's curvature entered the maps checked)
 }
 
-/// Six exponents in conjugate pairs, the middle two zero, the volume kept.
-void check_pairs(const analysis::BasicLyapunovSpectrum<3>& r) {
+/// A field with a force: the static force, or a slow drive, with the field either way.
+dynamics::MagneticDriveFlight3 with_static_force(const Eigen::Vector3d& omega_c) {
+  return {omega_c, Eigen::Vector3d(0.2, -0.5, 0.3)};
+}
+dynamics::MagneticDriveFlight3 with_drive(const Eigen::Vector3d& omega_c, double amplitude = 1) {
+  return {omega_c, amplitude * Eigen::Vector3d(1.0, 0.6, -0.8), 7.0, 0.3};
+}
+
+/// Six exponents in conjugate pairs, the volume kept: a Hamiltonian flow (a time-dependent one
+/// under a drive).
+void check_conjugate(const analysis::BasicLyapunovSpectrum<3>& r) {
   const double top = r.per_time[0].mean;
   CHECK(top > 0.5);
   CHECK(r.per_time[1].mean > 0.1 * top);  // a second positive exponent: two unstable directions
@@ -90,8 +102,14 @@ void check_pairs(const analysis::BasicLyapunovSpectrum<3>& r) {
     const auto& l = r.trajectories[i].log_stretch;
     CHECK(std::abs(l[0] + l[1] + l[2] + l[3] + l[4] + l[5]) < 1e-8 * std::abs(l[0]));  // det J = 1
     for (int k = 0; k < 3; ++k) CHECK(std::abs(r.exponent(i, k) + r.exponent(i, 5 - k)) < 0.01 * top);
-    CHECK(std::abs(r.exponent(i, 2)) < 0.01 * top);  // the flow's direction and the energy
   }
+}
+
+/// Conjugate pairs, the middle two zero: an autonomous flow that keeps its energy.
+void check_pairs(const analysis::BasicLyapunovSpectrum<3>& r) {
+  check_conjugate(r);
+  for (std::size_t i = 0; i < r.trajectories.size(); ++i)
+    CHECK(std::abs(r.exponent(i, 2)) < 0.01 * r.per_time[0].mean);  // the flow's direction and the energy
 }
 
 /// The maximal exponent from tangent dynamics against two nearby orbits' divergence rate
@@ -105,7 +123,7 @@ void check_against_divergence(const Flight& flight, std::size_t particles, std::
   std::vector<double> divergence;
   for (std::size_t i = 0; i < particles; ++i)
     divergence.push_back(
-        divergence_rate(table, flight, initial(i), Eigen::Vector3d(0.6, 0, 0.8), r.trajectories[i].time));
+        divergence_rate(table, flight, initial(i), Eigen::Vector3d(0.6, 0, 0.8), collisions));
   const auto expected = analysis::sample_moments(divergence);
   INFO("tangent dynamics " << r.per_time[0].mean << " ± " << r.per_time[0].se << ", two orbits " << expected.mean
                            << " ± " << expected.se_mean);
@@ -121,6 +139,14 @@ TEST_CASE("3-D: the tangent map equals finite differences on planes and spheres"
 
 TEST_CASE("3-D: the tangent map of helices in a magnetic field equals finite differences") {
   check_against_finite_differences(helix);
+}
+
+TEST_CASE("3-D: the tangent map of a field with a force (static, the drive) equals finite differences, both signs") {
+  for (const Eigen::Vector3d& omega_c : {helix.omega_c, Eigen::Vector3d(-helix.omega_c)}) {
+    INFO("omega_c " << omega_c.transpose());
+    check_against_finite_differences(with_static_force(omega_c));
+    check_against_finite_differences(with_drive(omega_c));
+  }
 }
 
 TEST_CASE("3-D integrable tables (cube, ball): the maximal exponent vanishes, decreasing with the length") {
@@ -141,6 +167,9 @@ TEST_CASE("3-D Sinai table: six exponents in conjugate pairs, two of them zero; 
   const dynamics::Table3 table(sh.region);
   check_pairs(free_spectrum(table, 6, 20000));
   check_pairs(spectrum(table, helix, 6, 20000));
+  // A static force in the field keeps ½v² − (F/m)·x: two zeros again; under the drive, pairs.
+  check_pairs(spectrum(table, with_static_force(helix.omega_c), 6, 20000));
+  check_conjugate(spectrum(table, with_drive(-helix.omega_c), 6, 20000));
 }
 
 TEST_CASE("3-D Sinai table: the maximal exponent equals two nearby orbits' divergence rate, within 3 SE") {
@@ -149,6 +178,11 @@ TEST_CASE("3-D Sinai table: the maximal exponent equals two nearby orbits' diver
 
 TEST_CASE("3-D Sinai table in a magnetic field: the maximal exponent equals two orbits' divergence rate") {
   check_against_divergence(helix, 32, 6000);
+}
+
+TEST_CASE("3-D Sinai table in a field with a force: the maximal exponent equals two orbits' divergence rate") {
+  check_against_divergence(with_static_force(helix.omega_c), 32, 6000);
+  check_against_divergence(with_drive(-helix.omega_c, 0.15), 32, 3000);
 }
 
 TEST_CASE("billiard lyapunov on a 3-D shape: six exponents, the same for 1 and 2 threads") {
@@ -173,4 +207,14 @@ TEST_CASE("billiard lyapunov on a 3-D shape: six exponents, the same for 1 and 2
   const auto m = nlohmann::json::parse(magnetic.output);
   REQUIRE(m["spectrum"].size() == 6);
   CHECK(m["spectrum"][0].get<double>() == Approx(-m["spectrum"][5].get<double>()).epsilon(0.01));
+  const auto forced =
+      billiard("lyapunov scenes/sinai3-magnetic-driven.yaml --particles 3 --collisions 1000 --json --quiet");
+  INFO(forced.output);
+  REQUIRE(forced.status == 0);
+  const auto f = nlohmann::json::parse(forced.output);
+  REQUIRE(f["spectrum"].size() == 6);
+  CHECK(f["magnetic"] == true);
+  CHECK(f["force"] == "periodic");
+  for (int k = 0; k < 3; ++k)
+    CHECK(f["spectrum"][k].get<double>() == Approx(-f["spectrum"][5 - k].get<double>()).epsilon(0.01));
 }

@@ -470,6 +470,31 @@ TEST_CASE("exit times of the field with a force through lines, circles and ellip
   CHECK(compared > 120);
 }
 
+TEST_CASE("collision() meets elliptic arcs in a field with a force on the flight itself, not on an affine image") {
+  // An affine map takes the cyclotron circle to an ellipse: the field's flights are no uniform
+  // acceleration's, and must not borrow its elliptic exit time from the unit circle.
+  STATIC_REQUIRE(!dynamics::affine_covariant<dynamics::MagneticDriveFlight>);
+  const auto sh = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/sinai-ellipse.yaml");
+  const dynamics::Table table(sh.region);
+  int elliptic = 0;
+  for (const dynamics::MagneticDriveFlight f :
+       {dynamics::MagneticDriveFlight{0.8, Vec2(0.4, -0.9)}, dynamics::MagneticDriveFlight{-0.8, Vec2(1.5, 1), 7, 0.3}}) {
+    const auto initial = dynamics::microcanonical(table, f, 1.0, 5);
+    for (std::size_t i = 0; i < 4; ++i) {
+      auto s = initial(i);
+      for (int k = 0; k < 30; ++k) {
+        const auto hit = dynamics::collision(table, f, s, s.t + 100);
+        REQUIRE(hit.found());
+        INFO("particle " << i << ", collision " << k);
+        CHECK((f.advance(s, hit.t).x - hit.point).norm() < 1e-9);  // (the contact projects onto the wall)
+        elliptic += hit.wall.kind == dynamics::wall_kind::elliptic_arc;
+        dynamics::bounce(f, s, hit);
+      }
+    }
+  }
+  CHECK(elliptic > 20);
+}
+
 // The paper's prediction with a weak field: every orbit meets the wall (r_c ≈ 2 at E0 = 1/2,
 // the clover's size ~2), and ω = 40π ≫ Ω = 1/2, so the drive averages as without a field.
 TEST_CASE("driven clover in a weak field at ω ≫ Ω: <ΔE> and Var ΔE equal g1 Δt and g2 Δt") {

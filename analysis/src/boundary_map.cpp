@@ -1,5 +1,10 @@
 #include "billiards/analysis/boundary_map.hpp"
 
+#include "billiards/geometry/expression.hpp"
+#include "billiards/geometry/input_error.hpp"
+
+#include <fmt/core.h>
+
 #include <algorithm>
 
 namespace billiards::analysis {
@@ -86,5 +91,39 @@ std::optional<double> BoundaryCoordinates::locate(const Vec2& x, double toleranc
   }
   return std::nullopt;
 }
+
+template <int D>
+BasicSection<D> parse_section(const std::string& text, const std::string& option) {
+  using V = Eigen::Matrix<double, D, 1>;
+  const char* names[] = {"x", "y", "z"};
+  const auto eq = text.find('=');
+  const auto fail = [&](const std::string& why) { return InputError(option + " '" + text + "'", 0, why); };
+  if (eq == std::string::npos || text.find('=', eq + 1) != std::string::npos)
+    throw fail(D == 2 ? "a section is one equation of a line in x and y, such as \"y = 0\" or \"x + 2*y = 1\""
+                      : "a 3-D section is one equation of a plane in x, y and z, such as \"z = 0\" or \"x + y = 0.2\"");
+  const std::string difference = fmt::format("({}) - ({})", text.substr(0, eq), text.substr(eq + 1));
+  const auto f = [&](const V& x) {
+    Expressions e;
+    for (int k = 0; k < D; ++k) e.define(names[k], fmt::format("{:.17g}", x[k]), option, 0);
+    return e.evaluate(difference, option, 0);
+  };
+  const double c = -f(V::Zero());
+  V a;
+  for (int k = 0; k < D; ++k) a[k] = f(V::Unit(k)) + c;
+  const double norm = a.norm();
+  for (const double scale : {1.0, -2.3, 1e3}) {
+    V x;
+    for (int k = 0; k < D; ++k) x[k] = scale * std::sin(1.7 + 2.9 * k);
+    const double linear = a.dot(x) - c;
+    if (!(std::abs(f(x) - linear) <= 1e-9 * (std::abs(linear) + norm * x.cwiseAbs().sum() + std::abs(c))))
+      throw fail(D == 2 ? "the equation is not linear in x and y: a section is a straight line"
+                        : "the equation is not linear in x, y and z: a 3-D section is a plane");
+  }
+  if (!(norm > 0)) throw fail(D == 2 ? "the equation does not depend on x or y: it is no line"
+                                     : "the equation does not depend on x, y or z: it is no plane");
+  return {a / norm, c / norm};
+}
+template BasicSection<2> parse_section<2>(const std::string&, const std::string&);
+template BasicSection<3> parse_section<3>(const std::string&, const std::string&);
 
 }  // namespace billiards::analysis

@@ -293,8 +293,18 @@ def test_phase_space_functions_give_the_programs_numbers(source, tmp_path):
     assert np.allclose(lyap["per_trajectory"].sum(axis=1), 0, atol=1e-9)
     # (50 000 collisions an orbit, as the CLI's default: its distance to uniform, ~0.03, stays clear of 0.1)
     assert bk.chaos(shape, orbits=3, collisions=50000)["ergodic"] is True
+    rows = bk.boundary_map(shape, particles=3, collisions=200, seed=4, section="y = 0.2")
+    billiard("bmap", "shapes/clover.yaml", "--section", "y = 0.2", "--particles", 3, "--collisions", 200, "--seed", 4,
+             "--quiet", "--no-csv", "--out", tmp_path / "line")
+    assert rows.shape[1] == 6 and np.array_equal(rows, np.load(tmp_path / "line" / "section.npy"))
+    forced = source / "scenes" / "clover-magnetic-driven.yaml"
     with pytest.raises(ValueError, match="needs a time horizon"):  # (a magnetic field with a force)
-        bk.boundary_map(bk.load_scene(source / "scenes" / "clover-magnetic-driven.yaml"))
+        bk.boundary_map(bk.load_scene(forced))
+    # bk.lyapunov follows such a scene to successive horizons, as the CLI does.
+    lyap = bk.lyapunov(bk.load_scene(forced), particles=3, collisions=1000)
+    cli = billiard_json("lyapunov", forced, "--particles", 3, "--collisions", 1000, "--quiet")
+    assert list(lyap["spectrum"]) == cli["spectrum"] and lyap["trapped"] == cli["trapped"] == 0
+    assert lyap["spectrum"][0] > 0
     with pytest.raises(ValueError, match="give time="):
         bk.trajectory(bk.load_scene(source / "scenes" / "clover-magnetic-driven.yaml"), collisions=50)
     assert bk.trajectory(bk.load_scene(source / "scenes" / "clover-magnetic-driven.yaml"), time=2)["times"][-1] <= 2

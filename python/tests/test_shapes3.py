@@ -255,3 +255,24 @@ def test_phase_space_functions_in_3d_give_the_programs_numbers(source, tmp_path)
     assert np.array_equal(r["escape_times"], table[:, 1]) and np.array_equal(r["collisions"], table[:, 2])
     with pytest.raises(ValueError, match="3-D table has no boundary map"):
         bk.boundary_map(shape)
+
+
+def test_boundary_map_gives_the_programs_plane_sections(source, tmp_path):
+    """bk.boundary_map(section=...) of a Shape3 or a 3-D Scene is `billiard bmap --section`'s
+    section3.npy, row for row; a bad plane is an InputError, as on the command line."""
+    path = shape3_path(source, "sinai3")
+    rows = bk.boundary_map(bk.load_shape(path), particles=3, collisions=300, seed=4, section="x + 2*z = 0.3")
+    billiard("bmap", path, "--section", "x + 2*z = 0.3", "--particles", 3, "--collisions", 300, "--seed", 4,
+             "--quiet", "--no-csv", "--out", tmp_path / "plane")
+    assert rows.shape[1] == 8 and rows.shape[0] > 100
+    assert np.array_equal(rows, np.load(tmp_path / "plane" / "section3.npy"))
+    assert np.all(np.abs(rows[:, 4:6]) <= 1)  # (p1, p2: components of the unit velocity)
+    driven = source / "scenes" / "sinai3-driven.yaml"
+    rows = bk.boundary_map(bk.load_scene(driven), particles=2, collisions=200, section="z = 0")
+    billiard("bmap", driven, "--section", "z = 0", "--particles", 2, "--collisions", 200, "--quiet", "--no-csv",
+             "--out", tmp_path / "driven")
+    assert np.array_equal(rows, np.load(tmp_path / "driven" / "section3.npy"))
+    with pytest.raises(bk.InputError, match="not linear in x, y and z"):
+        bk.boundary_map(bk.load_shape(path), section="x*z = 0")
+    with pytest.raises(ValueError, match="a section is drawn for free flights"):
+        bk.boundary_map(bk.load_scene(source / "scenes" / "sinai3-magnetic.yaml"), section="z = 0")

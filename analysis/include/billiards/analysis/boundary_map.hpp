@@ -27,6 +27,7 @@
 #include <concepts>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -93,6 +94,12 @@ struct BasicSection {
 };
 using SectionLine = BasicSection<2>;
 using SectionPlane = BasicSection<3>;
+
+/// The section of an equation "LHS = RHS" linear in x and y (and z in 3-D), as `billiard bmap
+/// --section` and billiardkit.boundary_map(section=) read it: n·x = c with n a unit vector.
+/// Anything else is an InputError naming `option` and the text.
+template <int D>
+BasicSection<D> parse_section(const std::string& text, const std::string& option);
 
 /// Rows of `bmap.npy`: particle, collision (1, 2, ...), s, p, t, energy (after the bounce).
 inline constexpr std::array<const char*, 6> bmap_columns{"particle", "collision", "s", "p", "t", "energy"};
@@ -173,6 +180,11 @@ SectionRows boundary_map(const dynamics::Table& table, const BoundaryCoordinates
 /// The flights whose crossings of a section are found here: straight ones (in closed form), and
 /// those under a uniform force, static or periodic, in 2-D and 3-D (by root finding on the
 /// flight itself, below).
+/// The flights of section_flight, as the CLI and the Python module name them when they refuse
+/// a scene.
+inline constexpr const char* section_flights_named =
+    "free flights and a uniform force, static (2-D) or periodic (lab picture)";
+
 template <class Flight>
 concept section_flight =
     dynamics::is_straight<Flight> || std::is_same_v<Flight, dynamics::ConstantForceFlight> ||

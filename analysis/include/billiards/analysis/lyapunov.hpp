@@ -5,7 +5,8 @@
 // lengths the orthogonalisation removes add up to the exponents (4 in 2-D, 6 in 3-D).
 //
 // Flights: free, a static uniform force (2-D), the uniform periodic drive F cos(ω t + phase)
-// (2-D and 3-D), and a uniform magnetic field (2-D and 3-D).  Every one of them has
+// (2-D and 3-D; in 2-D also in the quivering-wall picture), a uniform magnetic field (2-D and
+// 3-D), and the field with a static force or the drive (2-D and 3-D).  Every one of them has
 // v̇ = A v + f(t), A linear (0, or the field's v ↦ v × Ω) and f independent of the state, so the
 // tangent flow over a flight of duration τ is the linear flow itself:
 //   δx ← δx + M(τ) δv,   δv ← E(τ) δv,   E = e^{Aτ}, M = ∫₀^τ E
@@ -20,7 +21,11 @@
 //   δt   = −(n·δx)/(n·v),         δx_c = δx + v δt   (the shift of the contact along the wall)
 //   δx'  = R δx
 //   δv'  = R δv + (R a − a') δt − 2[(v·δn) n + (v·n) δn],   δn = κ δx_c.
-// Under a uniform force a' = a and R a − a = −2(a·n) n; in a field a = v × Ω, a' = (Rv) × Ω.
+// Under a uniform force a' = a and R a − a = −2(a·n) n; in a field a = v × Ω + f, a' = (Rv) × Ω + f.
+// Quivering walls (forced_flight.hpp) are the drive seen from the frame y = x + d(t), a
+// translation that depends on t alone: δy = δx and δẏ = δẋ, so the tangent vectors and their
+// maps are the lab's, with v the velocity relative to the walls, ẏ − ḋ, and a = a' = F cos θ/m
+// (−d̈, the walls' acceleration seen from the particle).
 #pragma once
 
 #include "billiards/analysis/per_particle.hpp"
@@ -34,6 +39,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <type_traits>
 #include <vector>
 
@@ -48,17 +54,30 @@ using TangentBasis = BasicTangentBasis<2>;
 template <class Flight>
 inline constexpr int dimension_of = Flight::State::dimension;
 
-/// Flights in a uniform magnetic field, whose tangent flow turns δv.
+/// Flights in a uniform magnetic field with a force, whose collision search needs a time
+/// horizon (scene.hpp's searches_to_a_horizon: an orbit may circle inside the table forever).
 template <class Flight>
-concept magnetic_tangent_flight =
-    std::is_same_v<Flight, dynamics::MagneticFlight> || std::is_same_v<Flight, dynamics::MagneticFlight3>;
+concept horizon_flight =
+    std::is_same_v<Flight, dynamics::MagneticDriveFlight> || std::is_same_v<Flight, dynamics::MagneticDriveFlight3>;
+
+/// Flights in a uniform magnetic field (with a force or without), whose tangent flow turns δv.
+template <class Flight>
+concept magnetic_tangent_flight = std::is_same_v<Flight, dynamics::MagneticFlight> ||
+                                  std::is_same_v<Flight, dynamics::MagneticFlight3> || horizon_flight<Flight>;
 
 /// The flights whose tangent dynamics is known here.
 template <class Flight>
 concept tangent_flight =
     std::is_same_v<Flight, dynamics::FreeFlight> || std::is_same_v<Flight, dynamics::ConstantForceFlight> ||
-    std::is_same_v<Flight, dynamics::PeriodicDriveFlight> || std::is_same_v<Flight, dynamics::FreeFlight3> ||
-    std::is_same_v<Flight, dynamics::PeriodicDriveFlight3> || magnetic_tangent_flight<Flight>;
+    std::is_same_v<Flight, dynamics::PeriodicDriveFlight> || std::is_same_v<Flight, dynamics::QuiveringWallFlight> ||
+    std::is_same_v<Flight, dynamics::FreeFlight3> || std::is_same_v<Flight, dynamics::PeriodicDriveFlight3> ||
+    magnetic_tangent_flight<Flight>;
+
+/// The flights of tangent_flight, as the CLI and the Python module name them when they refuse
+/// a scene (a position-dependent force or a potential: the integrated FieldFlight).
+inline constexpr const char* tangent_flights_named =
+    "free flights, the periodic drive and a magnetic field (alone, with a static force or with the periodic "
+    "drive) in 2-D and 3-D, a static force alone and quivering walls in 2-D";
 
 /// The particle's acceleration in the state `s` of the flight.
 template <int D>
@@ -79,6 +98,33 @@ inline Vec2 acceleration_at(const dynamics::MagneticFlight& f, const dynamics::S
 inline dynamics::Vec3 acceleration_at(const dynamics::MagneticFlight3& f, const dynamics::State3& s) {
   return s.v.cross(f.omega_c);
 }
+/// v × Ω + (F/m) cos θ, the drive's phase θ carried by the state (as the periodic drive's).
+template <int D>
+Eigen::Matrix<double, D, 1> acceleration_at(const dynamics::BasicMagneticDriveFlight<double, D>& f,
+                                            const dynamics::BasicDrivenState<double, D>& s) {
+  return acceleration_at(dynamics::BasicMagneticFlight<double, D>{f.omega_c}, s) + f.accel * s.cos_phase;
+}
+/// Quivering walls: the lab's acceleration F cos θ/m, −d̈ (above).
+inline Vec2 acceleration_at(const dynamics::QuiveringWallFlight& f, const dynamics::DrivenState& s) {
+  return f.accel * s.cos_phase;
+}
+
+/// The particle's velocity relative to the wall it hits: its own, or ẏ − ḋ off quivering walls.
+template <class Flight>
+auto velocity_at_wall(const Flight&, const typename Flight::State& s) {
+  return s.v;
+}
+inline Vec2 velocity_at_wall(const dynamics::QuiveringWallFlight& f, const dynamics::DrivenState& s) {
+  return s.v - f.wall_velocity(s);
+}
+
+/// |Ω|, the cyclotron frequency.
+template <class Flight>
+  requires magnetic_tangent_flight<Flight>
+double cyclotron_rate(const Flight& flight) {
+  if constexpr (dimension_of<Flight> == 2) return std::abs(flight.omega_c);
+  else return flight.omega_c.norm();
+}
 
 /// E(τ) = e^{Aτ} and M(τ) = ∫₀^τ E of the flight's linear part (above).
 template <int D>
@@ -95,13 +141,11 @@ LinearFlow<dimension_of<Flight>> linear_flow(const Flight& flight, double tau) {
   constexpr int D = dimension_of<Flight>;
   using Mat = Eigen::Matrix<double, D, D>;
   Mat K, P = Mat::Zero();
-  double k = 0;
+  const double k = cyclotron_rate(flight);
   if constexpr (D == 2) {
-    k = std::abs(flight.omega_c);
     const double sign = flight.omega_c > 0 ? 1 : -1;
     K << 0, sign, -sign, 0;  // v × (±ẑ)
   } else {
-    k = flight.omega_c.norm();
     const dynamics::Vec3 b = flight.omega_c / k;
     K << 0, b.z(), -b.y(), -b.z(), 0, b.x(), b.y(), -b.x(), 0;  // v ↦ v × b
     P = b * b.transpose();
@@ -169,9 +213,48 @@ BasicTangentBasis<D> initial_tangent_basis() {
   return q;
 }
 
+/// A horizon flight's collision is searched an eighth of a cyclotron period ahead at a time (the
+/// certified scan's cost grows with the horizon: in the driven clover in a field, 18 µs per
+/// collision searched 1/8 or 1/16 of a period ahead, 42 µs a period ahead, 237 µs 100 time
+/// units ahead); a particle that meets no wall in wall_free_periods periods is taken to stay
+/// clear of the walls (follow.hpp's trapped orbit when it is inside the table, an escape when it
+/// is not).
+inline constexpr int horizons_per_period = 8;
+inline constexpr int wall_free_periods = 10000;
+
+/// `evolve` (collision.hpp) for a horizon flight: while the search to the next horizon meets no
+/// wall, the particle is advanced there and searched again, for at most wall_free_periods
+/// periods.  Returns the bounces made; `s` is left after the last bounce, or where the search
+/// gave up.
+template <horizon_flight Flight, class Visit>
+std::size_t evolve_to_horizons(const dynamics::TableFor<Flight>& table, const Flight& flight,
+                               typename Flight::State& s, std::size_t collisions, Visit&& visit) {
+  const double step = 2 * std::numbers::pi / cyclotron_rate(flight) / horizons_per_period;
+  dynamics::Clock clock;
+  dynamics::restart_clock(flight, s, clock);
+  for (std::size_t k = 0; k < collisions; ++k) {
+    auto hit = dynamics::collision(table, flight, s, s.t + step);
+    for (int horizons = 1; !hit.found() && horizons < wall_free_periods * horizons_per_period; ++horizons) {
+      s = flight.advance(s, s.t + step);
+      hit = dynamics::collision(table, flight, s, s.t + step);
+    }
+    if (!hit.found()) {
+      s = dynamics::on_clock(s, clock);
+      return k;
+    }
+    dynamics::bounce(flight, s, hit);
+    visit(dynamics::on_clock(hit, clock), dynamics::on_clock(s, clock), dynamics::Flown<double>{s.t, clock});
+    dynamics::restart_clock(flight, s, clock);
+  }
+  s = dynamics::on_clock(s, clock);
+  return collisions;
+}
+
 /// Carries the tangent basis q along the trajectory from `s` through `collisions` bounces,
 /// calling after(q, hit) just after each collision's Jacobian; returns the state after the last
-/// bounce (fewer bounces if the particle meets no wall: `made` says how many).
+/// bounce.  Fewer bounces if the particle meets no wall (`made` says how many): then it returns
+/// where the search for the next one ended (a horizon flight's give-up; the last bounce for the
+/// others, searched without a horizon).
 template <tangent_flight Flight, class After>
 typename Flight::State carry_tangent(const dynamics::TableFor<Flight>& table, const Flight& flight,
                                      typename Flight::State s, std::size_t collisions,
@@ -180,16 +263,22 @@ typename Flight::State carry_tangent(const dynamics::TableFor<Flight>& table, co
   typename Flight::State last = s;
   // (Over each flight's duration on its own clock: a difference of absolute times would be
   // rounded to ulp(t).)
-  made = dynamics::evolve(table, flight, s, collisions, [&](const auto& hit, const auto& bounced, const auto& flown) {
+  const auto carry = [&](const auto& hit, const auto& bounced, const auto& flown) {
     tangent_flight_step(flight, q, double(flown.duration));
     const double kappa = table.curvature_at(hit.wall, hit.point);
-    q = collision_jacobian<D>(hit.state.v, hit.normal, kappa, acceleration_at(flight, hit.state),
-                              acceleration_at(flight, bounced)) *
+    q = collision_jacobian<D>(velocity_at_wall(flight, hit.state), hit.normal, kappa,
+                              acceleration_at(flight, hit.state), acceleration_at(flight, bounced)) *
         q;
     last = bounced;
     after(q, hit);
-  });
-  return last;
+  };
+  if constexpr (horizon_flight<Flight>) {
+    made = evolve_to_horizons(table, flight, s, collisions, carry);
+    return made < collisions ? s : last;
+  } else {
+    made = dynamics::evolve(table, flight, s, collisions, carry);
+    return last;
+  }
 }
 
 /// One trajectory's exponents: the sums of the logarithms of the stretches, its time and its
@@ -200,7 +289,7 @@ struct BasicLyapunovTrajectory {
   double time = 0;
   std::uint64_t collisions = 0;
   bool escaped = false;
-  bool trapped = false;  // on a closed magnetic orbit inside the table, meeting no wall (no exponents)
+  bool trapped = false;  // on a magnetic orbit inside the table that meets no wall (no exponents)
 };
 using LyapunovTrajectory = BasicLyapunovTrajectory<2>;
 
@@ -218,8 +307,11 @@ BasicLyapunovTrajectory<dimension_of<Flight>> lyapunov_trajectory(const dynamics
   out.time = double(end.t - s.t);
   out.collisions = made;
   if (made < collisions) {
-    // A closed orbit that meets no wall circles inside the table (follow.hpp): not an escape.
-    if constexpr (requires { flight.closes_orbit(end); }) (flight.closes_orbit(end) ? out.trapped : out.escaped) = true;
+    // A closed orbit that meets no wall circles inside the table (follow.hpp): not an escape;
+    // nor is a horizon flight that has met none for wall_free_periods inside it.
+    if constexpr (horizon_flight<Flight>) (table.contains(end.x) ? out.trapped : out.escaped) = true;
+    else if constexpr (requires { flight.closes_orbit(end); })
+      (flight.closes_orbit(end) ? out.trapped : out.escaped) = true;
     else out.escaped = true;
   }
   return out;

@@ -72,10 +72,11 @@ using FreeFlight3 = BasicFreeFlight<double, 3>;
 
 /// Is the flight model's law covariant under affine maps x ↦ L (x − c)?  Straight flights are,
 /// and so are flights under a uniform acceleration (`accel`, mapped to L accel); a flight in a
-/// position-dependent field is not.
+/// position-dependent field is not, nor one in a magnetic field (`omega_c`), with or without an
+/// `accel`: L maps its circles to ellipses.
 template <class Flight>
 concept affine_covariant = std::is_base_of_v<BasicFreeFlight<typename Flight::Scalar, Flight::State::dimension>, Flight> ||
-                           requires(Flight f) { f.accel = f.accel; };
+                           (requires(Flight f) { f.accel = f.accel; } && !requires(Flight f) { f.omega_c; });
 
 /// The flight seen through the wall's map u = L (x − c) (time is not mapped).
 template <affine_covariant Flight, class Wall>
