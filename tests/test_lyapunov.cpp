@@ -169,8 +169,8 @@ TEST_CASE("the tangent map equals finite differences in a magnetic field with a 
     for (const double omega_c : {field.omega_c, -field.omega_c}) {
       INFO("omega_c " << omega_c);
       for (std::size_t i = 0; i < 4; ++i) {
-        check_against_finite_differences(table, with_static_force(omega_c), initial(i), 4);
-        check_against_finite_differences(table, with_drive(omega_c), initial(i), 4);
+        for (const auto& flight : {with_static_force(omega_c), with_drive(omega_c)})
+          check_against_finite_differences(table, flight, flight.start(initial(i)), 4);
       }
     }
   }

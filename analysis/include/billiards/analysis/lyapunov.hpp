@@ -243,7 +243,8 @@ std::size_t evolve_to_horizons(const dynamics::TableFor<Flight>& table, const Fl
       return k;
     }
     dynamics::bounce(flight, s, hit);
-    visit(dynamics::on_clock(hit, clock), dynamics::on_clock(s, clock), dynamics::Flown<double>{s.t, clock});
+    dynamics::visit_bounce(visit, dynamics::on_clock(hit, clock), dynamics::on_clock(s, clock),
+                           dynamics::Flown<double>{s.t, clock});
     dynamics::restart_clock(flight, s, clock);
   }
   s = dynamics::on_clock(s, clock);

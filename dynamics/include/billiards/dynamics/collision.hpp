@@ -205,6 +205,15 @@ struct Flown {
   const BasicClock<Real>& start;
 };
 
+/// visit(hit, state), or visit(hit, state, flown) when the visitor takes the flight's Flown too.
+template <class Visit, class HitT, class State, class Real>
+void visit_bounce(Visit& visit, const HitT& hit, const State& s, const Flown<Real>& flown) {
+  if constexpr (std::is_invocable_v<Visit&, const HitT&, const State&, const Flown<Real>&>)
+    visit(hit, s, flown);
+  else
+    visit(hit, s);
+}
+
 /// Follows the particle from `s` through its next `collisions` bounces (fewer if it meets no
 /// wall: an escape), calling visit(hit, state) with the state just after each bounce, times
 /// absolute (or visit(hit, state, flown) with the flight's Flown too, when it takes three
@@ -223,10 +232,7 @@ std::size_t evolve(const TableT& table, const Flight& flight, typename Flight::S
     if (!hit.found()) return k;
     bounce(flight, s, hit);
     if constexpr (Flight::conserves_energy) restore_speed(s.v, v2);
-    if constexpr (std::is_invocable_v<Visit&, decltype(on_clock(hit, clock)), decltype(on_clock(s, clock)), Flown<Real>>)
-      visit(on_clock(hit, clock), on_clock(s, clock), Flown<Real>{s.t, clock});
-    else
-      visit(on_clock(hit, clock), on_clock(s, clock));
+    visit_bounce(visit, on_clock(hit, clock), on_clock(s, clock), Flown<Real>{s.t, clock});
     restart_clock(flight, s, clock);
   }
   return collisions;
