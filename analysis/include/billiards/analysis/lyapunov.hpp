@@ -213,13 +213,10 @@ BasicTangentBasis<D> initial_tangent_basis() {
   return q;
 }
 
-/// A horizon flight's collision is searched an eighth of a cyclotron period ahead at a time (the
-/// certified scan's cost grows with the horizon: in the driven clover in a field, 18 µs per
-/// collision searched 1/8 or 1/16 of a period ahead, 42 µs a period ahead, 237 µs 100 time
-/// units ahead); a particle that meets no wall in wall_free_periods periods is taken to stay
-/// clear of the walls (follow.hpp's trapped orbit when it is inside the table, an escape when it
-/// is not).
-inline constexpr int horizons_per_period = 8;
+/// A horizon flight's collision is searched its look-ahead at a time (magnetic_flight.hpp's
+/// `lookahead`: an eighth of a cyclotron period); a particle that meets no wall in
+/// wall_free_periods periods is taken to stay clear of the walls (follow.hpp's trapped orbit
+/// when it is inside the table, an escape when it is not).
 inline constexpr int wall_free_periods = 10000;
 
 /// `evolve` (collision.hpp) for a horizon flight: while the search to the next horizon meets no
@@ -229,12 +226,12 @@ inline constexpr int wall_free_periods = 10000;
 template <horizon_flight Flight, class Visit>
 std::size_t evolve_to_horizons(const dynamics::TableFor<Flight>& table, const Flight& flight,
                                typename Flight::State& s, std::size_t collisions, Visit&& visit) {
-  const double step = 2 * std::numbers::pi / cyclotron_rate(flight) / horizons_per_period;
+  const double step = flight.lookahead();
   dynamics::Clock clock;
   dynamics::restart_clock(flight, s, clock);
   for (std::size_t k = 0; k < collisions; ++k) {
     auto hit = dynamics::collision(table, flight, s, s.t + step);
-    for (int horizons = 1; !hit.found() && horizons < wall_free_periods * horizons_per_period; ++horizons) {
+    for (int horizons = 1; !hit.found() && horizons < wall_free_periods * dynamics::lookaheads_per_period; ++horizons) {
       s = flight.advance(s, s.t + step);
       hit = dynamics::collision(table, flight, s, s.t + step);
     }

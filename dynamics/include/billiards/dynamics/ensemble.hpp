@@ -12,6 +12,7 @@
 #include <boost/container/static_vector.hpp>
 #include <omp.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -104,8 +105,13 @@ class Trajectory {
   bool done() const { return k_ == opt_->record_times.size(); }
   /// The end of the search for the next collision.  A straight flight costs the same whatever
   /// the horizon: it is searched without one, so that a particle that meets no wall at all is
-  /// caught as an escape at once.  (On the flight's own clock.)
-  double horizon() const { return is_straight<Flight> ? never : clock_.until(t_final_); }
+  /// caught as an escape at once.  A flight with a look-ahead (a magnetic field with a force)
+  /// is searched that far ahead at most.  (On the flight's own clock.)
+  double horizon() const {
+    if constexpr (is_straight<Flight>) return never;
+    else if constexpr (requires { flight_->lookahead(); }) return std::min(clock_.until(t_final_), flight_->lookahead());
+    else return clock_.until(t_final_);
+  }
   /// The state (its t on the flight's own clock) and the run's time at the start of its flight.
   const typename Flight::State& state() const { return s_; }
   const Clock& clock() const { return clock_; }
@@ -115,13 +121,21 @@ class Trajectory {
   bool advance_to(const HitT& hit) {
     const auto& times = opt_->record_times;
     const std::size_t n = times.size();
-    const double t_next = hit.found() ? hit.t : never;
+    // A search that stopped at its look-ahead, short of the last record time, with no wall met.
+    const double end = horizon();
+    const bool looked_ahead = !hit.found() && end < clock_.until(t_final_);
+    const double t_next = hit.found() ? hit.t : looked_ahead ? end : never;
     for (; k_ < n && clock_.until(times[k_]) <= t_next; ++k_) {
       const auto r = flight_->advance(s_, clock_.until(times[k_]));
       if (!table_->contains(r.x)) return escape();
       energies_[k_] = energy_of(*flight_, r, opt_->mass);
     }
     if (k_ == n) return false;
+    if (looked_ahead) {  // on to the look-ahead, to search again from there
+      s_ = flight_->advance(s_, end);
+      restart_clock(*flight_, s_, clock_);
+      return true;
+    }
     if (!hit.found()) return escape();  // no wall ahead of a particle that should meet one
     if (opt_->verify_every_flight && !midpoint_certified(hit) && !inside_at(0.5 * (s_.t + hit.t))) return escape();
     zero_flights_ = hit.t == s_.t ? zero_flights_ + 1 : 0;

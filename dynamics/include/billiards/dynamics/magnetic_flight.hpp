@@ -139,6 +139,9 @@ using MagneticFlight3 = BasicMagneticFlight<double, 3>;
 /// doubles, reduced, with its sine and cosine), so that each flight runs on its own clock: θ
 /// as ω t + φ0 from an absolute t in one double would keep only ulp(ω t) (3e-9 rad at
 /// ω = 40π, t = 10⁶).
+/// Collision searches per cyclotron period of a magnetic flight with a force (lookahead).
+inline constexpr int lookaheads_per_period = 8;
+
 template <class Real, int D = 2>
 struct BasicMagneticDriveFlight {
   using Scalar = Real;
@@ -163,6 +166,16 @@ struct BasicMagneticDriveFlight {
   double exit_time(const State& s, const SphereWall& w, double t_end) const requires(D == 3);
   /// A bound on the speed over the next τ of the flight from s.
   Real speed_bound(const State& s, const Real& tau) const;
+  /// How far ahead one collision search looks: an eighth of a cyclotron period
+  /// (lookaheads_per_period).  The search scans each wall up to its horizon, so its cost grows
+  /// with the horizon (in the driven clover in a field: 18 µs per collision an eighth of a
+  /// period ahead, 42 µs a period ahead, 237 µs 100 time units ahead); a caller that meets no
+  /// wall advances the flight there and searches again.
+  Real lookahead() const {
+    using std::abs;
+    if constexpr (D == 2) return boost::math::constants::two_pi<Real>() / (lookaheads_per_period * abs(omega_c));
+    else return boost::math::constants::two_pi<Real>() / (lookaheads_per_period * omega_c.norm());
+  }
 };
 using MagneticDriveFlight = BasicMagneticDriveFlight<double>;
 using MagneticDriveFlight3 = BasicMagneticDriveFlight<double, 3>;
