@@ -143,10 +143,11 @@ TEST_CASE("an elliptic arc with a = b is its circular arc") {
     if (tc == dynamics::never) continue;
     CHECK(std::abs(te - tc) <= 1e-13 * (1 + tc));
     const Vec2 p = s.x + s.v * (tc - s.t);
-    const auto [pe, ne] = as_ellipse.contact(p);
-    const auto [pc, nc] = as_circle.contact(p);
-    CHECK((pe - pc).norm() <= 1e-14 * (1 + c.norm()));
-    CHECK((ne - nc).norm() <= 1e-14);
+    for (const auto& [pe, pc] : {std::pair{as_ellipse.contact(p, s.v), as_circle.contact(p, s.v)},
+                                 std::pair{as_ellipse.radial_contact(p), as_circle.radial_contact(p)}}) {
+      CHECK((pe.first - pc.first).norm() <= 1e-14 * (1 + c.norm()));
+      CHECK((pe.second - pc.second).norm() <= 1e-14);
+    }
     CHECK(std::abs(as_ellipse.curvature_at(p) - arc.curvature()) <= 1e-13 / r);
   }
 }

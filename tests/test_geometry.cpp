@@ -147,7 +147,7 @@ TEST_CASE("the containment test's classified cells answer as the crossing count 
       // The nearest point of wall w's line or circle, then off it along the normal.
       Vec2 foot, n;
       if (w.kind == dynamics::wall_kind::arc) {
-        std::tie(foot, n) = table.arcs()[w.index].contact(p);
+        std::tie(foot, n) = table.arcs()[w.index].radial_contact(p);
       } else {
         const auto& seg = table.segments()[w.index];
         foot = seg.project(p);

@@ -117,7 +117,7 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
     }
     hit.t = s.t + out.tau[i];
     hit.state = flight_->advance(s, hit.t, PhaseSample<double>{out.theta[i], out.sin[i], out.cos[i]});
-    std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x);
+    std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x, hit.state.v);
   }
 }
 

@@ -545,12 +545,18 @@ class Lanes {
       const Pack vx = q.v0x + q.amp_v_x * (sn - q.sin_phase), vy = q.v0y + q.amp_v_y * (sn - q.sin_phase);
       const Pack x = (q.sx + q.ux * tau) - q.amp_x_x * (cs - q.cos_phase);
       const Pack y = (q.sy + q.uy * tau) - q.amp_x_y * (cs - q.cos_phase);
-      // BasicArcWall::contact: the circle's point nearest x, and the outward normal there.
+      // BasicArcWall::contact: x moved onto the circle along the flight (one Newton step), or
+      // radially where that step is not short; the outward normal there.
       const Arc a(all_, best_wall_);
       const Pack ux = x - a.cx, uy = y - a.cy;
+      const Pack rate = 2 * (ux * vx + uy * vy), s = -((ux * ux - a.r * a.r) + uy * uy) / rate;
+      const Pack v1 = abs(vx) + abs(vy);
+      const Mask along = (abs(s) * v1 <= a.slack) & (abs(s) * v1 * v1 <= abs(rate) / 8);  // (short_step)
+      const Pack qx = x + s * vx, qy = y + s * vy;
       const Pack inv = 1 / sqrt(ux * ux + uy * uy);
-      const Pack nx = ux * inv, ny = uy * inv;
-      const Pack px = a.cx + a.r * nx, py = a.cy + a.r * ny;
+      const Pack rx = ux * inv, ry = uy * inv;
+      const Pack px = sel(along, qx, a.cx + a.r * rx), py = sel(along, qy, a.cy + a.r * ry);
+      const Pack nx = sel(along, (qx - a.cx) / a.r, rx), ny = sel(along, (qy - a.cy) / a.r, ry);
       const Mask focusing = a.sign > 0;
       const Pack normal_x = sel(focusing, nx, -nx), normal_y = sel(focusing, ny, -ny);
       store(hits.t, t), store(hits.x, x), store(hits.y, y), store(hits.vx, vx), store(hits.vy, vy);

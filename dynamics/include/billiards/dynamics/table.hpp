@@ -54,10 +54,10 @@ class BasicTable<Real, 2> : public WallSet<WallKinds<Real>> {
   const std::vector<BasicSegmentWall<Real>>& segments() const { return Base::template walls<BasicSegmentWall<Real>>(); }
   const std::vector<BasicArcWall<Real>>& arcs() const { return Base::template walls<BasicArcWall<Real>>(); }
   const std::vector<BasicEllipticArcWall<Real>>& elliptic_arcs() const { return Base::template walls<BasicEllipticArcWall<Real>>(); }
-  /// The point of the wall nearest p (hit points are projected: see walls.hpp), and the
+  /// The hit point p of a flight with velocity v moved onto the wall (see walls.hpp), and the
   /// region's outward unit normal there.
-  std::pair<V, V> contact(const WallId& wall, const V& p) const {
-    return visit(wall, [&](const auto& w) { return w.contact(p); });
+  std::pair<V, V> contact(const WallId& wall, const V& p, const V& v) const {
+    return visit(wall, [&](const auto& w) { return w.contact(p, v); });
   }
   V normal_at(const WallId& wall, const V& p) const {
     return visit(wall, [&](const auto& w) { return V(w.normal_at(p)); });
