@@ -93,6 +93,40 @@ TEST_CASE("scene and shape files: duplicate keys, non-UTF-8 bytes, unknown param
   check_refused(billiard("info " + (dir / "cw.yaml").string()), "runs clockwise: list its pieces counter-clockwise", out);
 }
 
+TEST_CASE("a field or potential that is not finite in the table's bounding box is bad input, for every command") {
+  // sqrt(x − 0.5) is NaN on the left half of the unit square, the corner (0, 0) the first point
+  // checked; the error names the line of the key `field` (`potential`) and comes before any
+  // command prints a prediction (which would be NaN) or writes a file.
+  const auto dir = scratch("field-box");
+  const auto out = dir / "out";
+  const auto scene = dir / "scene.yaml";
+  const std::string head = "shape: " + shapes + "square.yaml\nmass: 1\ninitial:\n  microcanonical: {energy: 1/2}\n";
+  const std::string tail = "run:\n  particles: 50\n  time: 1\n";
+  const struct {
+    std::string yaml, error;
+  } cases[] = {
+      {head + "force:\n  field:\n    amplitude: [\"sqrt(x - 0.5)\", \"0\"]\n    omega: 40*pi\n" + tail,
+       ":6: the force is not finite at (x, y) = (0, 0), in the table's bounding box\n"},
+      {head + "force:\n  periodic: {amplitude: [1, 0], omega: 40*pi}\npotential:\n  expression: sqrt(x - 0.5)\n" + tail,
+       ":7: the force −∇U is not finite at (x, y) = (0, 0), in the table's bounding box\n"},
+  };
+  const std::string out_args = " --quiet --out " + out.string();
+  const std::pair<const char*, std::string> commands[] = {
+      {"run", out_args},         {"compare", out_args}, {"coeffs", ""},
+      {"fp", " --times 1 -o " + out.string()},          {"trajectory", out_args},
+      {"bmap", out_args},        {"lyapunov", ""},      {"animate", " --quiet -o " + out.string() + ".gif"}};
+  for (const auto& c : cases) {
+    write_file(scene, c.yaml);
+    for (const auto& [command, args] : commands) {
+      const auto r = billiard(std::string(command) + " " + scene.string() + args);
+      INFO(command);
+      check_refused(r, "", out);
+      CHECK(r.output == "billiard: error: " + scene.string() + c.error);
+      CHECK_FALSE(fs::exists(out.string() + ".gif"));
+    }
+  }
+}
+
 TEST_CASE("a field that is not finite where only some particles go: an error naming the scene and the particle") {
   // sqrt(|x − 0.31| − 0.001) is NaN in a strip 0.002 wide, between the points of the grid on
   // which the scene's field is checked before the run (1/32 apart): only the particles that

@@ -20,6 +20,7 @@ struct FieldFlight::Model {
   double mass;
   std::optional<std::array<CoordinateFunction, 2>> field;  // F(x), or
   Vec2 uniform = Vec2::Zero();                             // a uniform F
+  geometry::SourceRef field_source;                        // the scene's key of F(x), for errors
   bool driven = false;
   double omega = 0, phase = 0;
   std::optional<Potential> potential;
@@ -27,23 +28,34 @@ struct FieldFlight::Model {
   double accel_bound = 0;   // A ≥ |∇U|/m + |F|/m over the bounding box
 
   Vec2 amplitude(const Vec2& x) const { return field ? Vec2((*field)[0](x), (*field)[1](x)) : uniform; }
+  Vec2 gradient(const Vec2& x) const { return Vec2(potential->gradient[0](x), potential->gradient[1](x)); }
   /// ẍ at x when the drive's phase is θ.
   Vec2 acceleration(const Vec2& x, double theta) const {
     Vec2 a = Vec2::Zero();
     if (driven) a += amplitude(x) * std::cos(theta);
-    if (potential) a -= Vec2(potential->gradient[0](x), potential->gradient[1](x));
+    if (potential) a -= gradient(x);
     return a / mass;
   }
   /// |∇U|/m + |F|/m at x.
   double acceleration_size(const Vec2& x) const {
     double a = 0;
     if (driven) a += amplitude(x).norm();
-    if (potential) a += Vec2(potential->gradient[0](x), potential->gradient[1](x)).norm();
+    if (potential) a += gradient(x).norm();
     return a / mass;
   }
 };
 
 namespace {
+
+/// A force that is not finite at x, in the box: bad input, at the scene's key of the potential
+/// when its gradient is not finite there, else at the field's.
+[[noreturn]] void refuse_force_at(const FieldFlight::Model& m, const Vec2& x) {
+  const bool potential = m.potential && (!m.field || !m.gradient(x).allFinite());
+  const geometry::SourceRef& where = potential ? m.potential->source : m.field_source;
+  throw InputError(where.file, where.line,
+                   fmt::format("the force {}is not finite at (x, y) = ({:.9g}, {:.9g}), in the table's bounding box",
+                               potential ? "−∇U " : "", x.x(), x.y()));
+}
 
 /// Bound on |∇U|/m + |F|/m over the box: the largest value on a 129 × 129 grid plus the
 /// largest difference between neighbouring grid values (a Lipschitz margin: any point is within
@@ -57,9 +69,7 @@ double acceleration_bound(const FieldFlight::Model& m, const Vec2& lo, const Vec
     for (int j = 0; j <= n; ++j) {
       const Vec2 x = lo + Vec2((hi - lo).x() * i / n, (hi - lo).y() * j / n);
       const double v = m.acceleration_size(x);
-      if (!std::isfinite(v))
-        throw std::runtime_error(
-            fmt::format("the force is not finite at (x, y) = ({:.9g}, {:.9g}), in the table's bounding box", x.x(), x.y()));
+      if (!std::isfinite(v)) refuse_force_at(m, x);
       a[i * (n + 1) + j] = v;
       top = std::max(top, v);
       if (i > 0) jump = std::max(jump, std::abs(v - a[(i - 1) * (n + 1) + j]));
@@ -325,6 +335,7 @@ FieldFlight::FieldFlight(const Force& force, const std::optional<Potential>& pot
     m->field = force.field;
   else
     m->uniform = force.amplitude;
+  m->field_source = force.field_source;
   m->driven = force.kind != Force::Kind::none;
   m->omega = force.kind == Force::Kind::constant ? 0.0 : force.omega;
   m->phase = force.kind == Force::Kind::constant ? 0.0 : force.phase;

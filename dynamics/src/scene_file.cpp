@@ -1,5 +1,6 @@
 #include "billiards/dynamics/scene.hpp"
 
+#include "billiards/dynamics/field_flight.hpp"
 #include "billiards/dynamics/table.hpp"
 #include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry/measures.hpp"
@@ -36,6 +37,13 @@ using SceneReader = YamlReader;
 /// Seeds in a file are numbers, exact up to 2^53 (--seed takes any 64-bit value).
 constexpr double max_seed = 9007199254740992.0;
 
+/// Where `key` of the mapping n is written (the key's own line: a block value starts below it).
+geometry::SourceRef key_ref(const SceneReader& r, const YAML::Node& n, const std::string& key) {
+  for (const auto& kv : n)
+    if (kv.first.Scalar() == key) return r.ref(kv.first);
+  return r.ref(n);
+}
+
 /// A function of x, y from a scalar node.
 CoordinateFunction coordinate_function(const SceneReader& r, const Expressions& expr, const YAML::Node& n) {
   if (!n.IsScalar()) r.fail(n, "expected an expression of x and y");
@@ -60,6 +68,7 @@ Force read_force(const SceneReader& r, const Expressions& expr, const YAML::Node
     if (dimension == 3) r.fail(field, "a field force is implemented in 2-D only");
     f.kind = Force::Kind::field;
     f.field = coordinate_vector(r, expr, r.required(field, "amplitude", "a field force"), "a field amplitude");
+    f.field_source = key_ref(r, n, "field");
     f.omega = r.positive(r.required(field, "omega", "a field force"), "omega");
     f.phase = field["phase"] ? r.number(field["phase"]) : 0.0;
     return f;
@@ -277,6 +286,7 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
   if (const YAML::Node u = doc["potential"]) {
     if (scene.dimension() == 3) r.fail(u, "a potential is implemented in 2-D only");
     scene.potential = read_potential(r, expr, u, Table(scene.shape<2>().region));
+    scene.potential->source = key_ref(r, doc, "potential");
   }
   if (const YAML::Node m = doc["magnetic"]) {
     scene.magnetic_field = read_magnetic(r, m, scene.dimension());
@@ -299,6 +309,11 @@ Scene parse_scene(const std::string& text, const std::string& path, const std::s
     if (scene.integrator_tolerance < 1e-14 || scene.integrator_tolerance > 1e-2)
       r.fail(integ["tolerance"], "integrator.tolerance must lie in [1e-14, 1e-2]");
   }
+  // Its flight refuses a field or potential that is not finite somewhere in the table's bounding
+  // box (and walls it cannot scan): made here, that is bad input before any command prints or
+  // writes.
+  if (scene.integrated())
+    FieldFlight(scene.force, scene.potential, scene.mass, Table(scene.shape<2>().region), scene.integrator_tolerance);
   if (ov.omega) {
     if (scene.force.kind != Force::Kind::periodic && scene.force.kind != Force::Kind::field)
       throw InputError(path, 0, "--omega needs a periodic force in the scene");

@@ -2,6 +2,7 @@
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import threading
@@ -49,6 +50,19 @@ def test_bad_dict_raises_with_the_message(source):
         bk.load_scene(scene, base_dir=source / "scenes")
     with pytest.raises(bk.InputError, match="cannot open"):
         bk.load_shape("no-such-shape.yaml")
+
+
+def test_a_field_not_finite_in_the_box_raises_at_its_key(source, tmp_path):
+    """As `billiard run`: sqrt(x - 0.5) is NaN on the left half of the square, reported at the
+    line of `field` when the scene is loaded."""
+    path = tmp_path / "scene.yaml"
+    path.write_text(f"shape: {source / 'shapes' / 'square.yaml'}\nmass: 1\n"
+                    "initial:\n  microcanonical: {energy: 1/2}\n"
+                    "force:\n  field:\n    amplitude: ['sqrt(x - 0.5)', '0']\n    omega: 40*pi\n"
+                    "run:\n  particles: 50\n  time: 1\n")
+    with pytest.raises(ValueError, match=re.escape(f"{path}:6: the force is not finite at (x, y) = (0, 0), "
+                                                   "in the table's bounding box")):
+        bk.load_scene(path)
 
 
 # --- theory --------------------------------------------------------------------------------

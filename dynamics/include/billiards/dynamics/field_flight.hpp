@@ -69,7 +69,10 @@ class FieldFlight {
 
   /// The scene's field: `force` of kind field (F(x) cos(ωt + phase)), periodic or constant
   /// (uniform, integrated too), or none; `potential` if any.  `tolerance` is the integrator's
-  /// relative tolerance (the absolute one is tolerance × the table's size).
+  /// relative tolerance (the absolute one is tolerance × the table's size).  A force that is not
+  /// finite at a point of the grid on which the acceleration bound is sampled, over the table's
+  /// bounding box, is bad input: InputError at the key of the field (`field_source`) or of the
+  /// potential (`source`).  (parse_scene makes the flight of every scene that needs one.)
   FieldFlight(const Force& force, const std::optional<Potential>& potential, double mass, const Table& table,
               double tolerance);
 

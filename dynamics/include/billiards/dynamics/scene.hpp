@@ -27,6 +27,7 @@ struct Force {
   Kind kind = Kind::none;
   Eigen::VectorXd amplitude = Eigen::VectorXd::Zero(2);  // F (the scene's dimension; uniform kinds)
   std::array<CoordinateFunction, 2> field;  // F(x) (field only, 2-D)
+  geometry::SourceRef field_source;          // the scene file's key `field`, for errors
   double omega = 0;               // ω (periodic and field)
   double phase = 0;               // (periodic and field)
   /// periodic only: simulate the equivalent free particle between walls translating by
@@ -39,6 +40,7 @@ struct Force {
 struct Potential {
   CoordinateFunction U;
   std::array<CoordinateFunction, 2> gradient;
+  geometry::SourceRef source;  // the scene file's key `potential`, for errors
 };
 
 /// The shape file's type in dimension D.
@@ -109,6 +111,8 @@ struct Scene {
   bool magnetic() const { return magnetic_field && *magnetic_field != Eigen::Vector3d::Zero(); }
   Eigen::Vector3d cyclotron_vector() const { return charge * *magnetic_field / mass; }
   double cyclotron_frequency() const { return cyclotron_vector().z(); }
+  /// Are its flights integrated (FieldFlight: a position-dependent drive or a potential, 2-D)?
+  bool integrated() const { return potential || force.kind == Force::Kind::field; }
   /// Does a particle's collision search need a time horizon?  A magnetic flight under a force
   /// may circle away from every wall for ever (its certified scan has no end without one), so
   /// it is followed to a time, not collision by collision.

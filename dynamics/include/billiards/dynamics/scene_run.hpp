@@ -35,7 +35,7 @@ auto with_flight(const Scene& scene, Run&& run) {
   }
   // Closed forms where they exist; the integrator only for a position-dependent drive or a
   // potential.
-  if (scene.potential || scene.force.kind == Force::Kind::field)
+  if (scene.integrated())
     return run(FieldFlight(scene.force, scene.potential, scene.mass, Table(scene.shape<2>().region),
                            scene.integrator_tolerance));
   const Vec2 accel = scene.force.amplitude / scene.mass;
