@@ -185,6 +185,11 @@ TEST_CASE("command lines: unknown commands and options, empty sweeps, impossible
   check_refused(billiard("run scenes/clover-free.yaml --frob"), "--frob", out);
   check_refused(run_scene(dir, driven_scene(), "--sweep omega=10..1:x2"), "--sweep: the range '10..1:x2' is empty", out);
   check_refused(run_scene(dir, driven_scene(), "--sweep F=1,x"), "--sweep", out);
+  // A SIMD target that does not exist is refused before the run prints or writes anything.
+  const auto simd = run_command("cd " BILLIARDS_SOURCE_DIR " && BILLIARDS_SIMD=avx1024 " BILLIARDS_BINARY
+                                " run scenes/clover-driven.yaml --particles 20 --time 1 --out " + out.string());
+  check_refused(simd, "billiard: error: BILLIARDS_SIMD: 'avx1024': expected scalar, ", out);
+  CHECK_THAT(simd.output, !Catch::Contains("prediction"));
   write_file(dir / "file", "a regular file");
   const auto under_file = dir / "file" / "out";
   const auto r = billiard("run scenes/clover-free.yaml --particles 100 --time 1 --quiet --out " + under_file.string());

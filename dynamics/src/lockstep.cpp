@@ -1,4 +1,5 @@
 #include "billiards/dynamics/lockstep.hpp"
+#include "billiards/geometry/input_error.hpp"
 
 #include <hwy/targets.h>
 
@@ -38,10 +39,10 @@ Kernel kernel_for(std::string_view choice) {
       if (r.name == choice) return r.kernel;
       runs += std::string(runs.empty() ? "" : ", ") + r.name;
     }
-    throw std::runtime_error("BILLIARDS_SIMD=" + std::string(choice) + ": this processor cannot run it (it runs " + runs +
-                             ", scalar or auto)");
+    throw InputError("BILLIARDS_SIMD", 0, "'" + std::string(choice) + "': this processor cannot run it (it runs " + runs +
+                                              ", scalar or auto)");
   }
-  throw std::runtime_error("BILLIARDS_SIMD=" + std::string(choice) + ": expected scalar, " + names + "or auto");
+  throw InputError("BILLIARDS_SIMD", 0, "'" + std::string(choice) + "': expected scalar, " + names + "or auto");
 }
 
 Kernel chosen_kernel() {
