@@ -283,7 +283,8 @@ inline const Real span_slack_ulps = 256 * std::numeric_limits<Real>::epsilon();
 
 /// Is a Newton step s (in time) along a flight onto a curve short: at most `slack` long, and at
 /// most an eighth of the chord the flight's line cuts from the curve, whose time is
-/// |rate|/|w|² (rate = d(gap)/ds, w the velocity in the curve's own units, v in the table's)?
+/// |rate|/|w|² (rate = d|u|²/ds, u and w the position and velocity in the curve's own units, a
+/// circle's about its centre, v the velocity in the table's)?
 /// At grazing incidence the step from a point off the curve by rounding runs along the
 /// tangent, as far as the chord's other end; the point is projected across the curve there.
 template <class Real, class V>
@@ -561,8 +562,8 @@ struct BasicEllipticArcWall {
   bool within_span(const V& p) const { return unit.within_span(to_unit(p)); }
   /// Where the flight through the hit point p with velocity v meets the ellipse, and the
   /// region's outward unit normal there: as for arcs, one Newton step along the flight in
-  /// mapped units (the map keeps lines), or, where it would be longer than the slack, the
-  /// radial projection in mapped units.
+  /// mapped units (the map keeps lines), or, where the step is not short, the radial
+  /// projection in mapped units.
   std::pair<V, V> contact(const V& p, const V& v) const {
     const V u = to_unit(p), w = map * v;
     const Real rate = 2 * u.dot(w), s = -((u.x() * u.x() - 1) + u.y() * u.y()) / rate;
