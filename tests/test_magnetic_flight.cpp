@@ -477,7 +477,7 @@ TEST_CASE("collision() meets elliptic arcs in a field with a force on the flight
   const auto sh = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/sinai-ellipse.yaml");
   const dynamics::Table table(sh.region);
   int elliptic = 0;
-  for (const dynamics::MagneticDriveFlight f :
+  for (const dynamics::MagneticDriveFlight& f :
        {dynamics::MagneticDriveFlight{0.8, Vec2(0.4, -0.9)}, dynamics::MagneticDriveFlight{-0.8, Vec2(1.5, 1), 7, 0.3}}) {
     const auto initial = dynamics::microcanonical(table, f, 1.0, 5);
     for (std::size_t i = 0; i < 4; ++i) {

@@ -202,7 +202,7 @@ double inradius(const geometry::Region2& region) {
   for (double step = size.maxCoeff() / k; step > 1e-4 * size.maxCoeff(); step /= 2)
     for (bool moved = true; moved;) {
       moved = false;
-      for (const geometry::Vec2 dx : {geometry::Vec2(step, 0), geometry::Vec2(-step, 0), geometry::Vec2(0, step), geometry::Vec2(0, -step)})
+      for (const geometry::Vec2& dx : {geometry::Vec2(step, 0), geometry::Vec2(-step, 0), geometry::Vec2(0, step), geometry::Vec2(0, -step)})
         if (const double d = radius(best + dx); d > r) r = d, best += dx, moved = true;
     }
   return r;

@@ -178,57 +178,35 @@ class Integrator {
 };
 
 /// One wall's scan along a path, step by step: `advance_to(τ1)` scans [resume, τ1] of the last
-/// step and returns the crossing time, or +∞ (then it resumes from where it stopped).
+/// step and returns the crossing time, or +∞ (then it resumes from where it stopped).  The
+/// wall's `gap_sample` bounds f'' from the acceleration bound A.
 template <class Wall>
 class WallScan {
  public:
   WallScan(const Wall& w, const FieldFlight::Model& m, const FieldState& s) : w_(w), m_(m) {
-    scale_ = m.scale + (s.x - anchor()).norm();
+    scale_ = m.scale + (s.x - w.bound_center).norm();
   }
 
   double advance_to(const FieldPath::Step& step, double tau1) {
     if (resume_ > tau1) return never;
     const double start = resume_;
-    auto at = [&](double tau) { return FieldPath::at(step, start + tau); };
     auto tolerance = [&](double tau) {
       return w_.slack + 8 * scan::eps<double> * (scale_ + start + tau) + 4 * m_.tolerance * m_.scale;
+    };
+    auto sample = [&](double tau) {
+      const Vec4 y = FieldPath::at(step, start + tau);
+      return w_.gap_sample(Vec2(y.head<2>()), Vec2(y.tail<2>()), m_.accel_bound);
     };
     auto earliest = [](double tau) { return tau; };
     auto in_span = [&](const Vec2& x) { return w_.within_span(x); };
     double resume = never;
-    const double tau = scan::first_outward_crossing(
-        [&](double t) { return sample(at(t)); }, earliest, in_span, tolerance, tau1 - start, &resume);
+    const double tau = scan::first_outward_crossing(sample, earliest, in_span, tolerance, tau1 - start, &resume);
     if (tau != never) return start + tau;
     resume_ = start + resume;
     return never;
   }
 
  private:
-  Vec2 anchor() const {
-    if constexpr (std::is_same_v<Wall, SegmentWall>)
-      return w_.a;
-    else
-      return w_.center;
-  }
-  /// f, f' and the bound on f'' for the state y = (x, v).
-  scan::Sample<double> sample(const Vec4& y) const {
-    const Vec2 x = y.head<2>(), v = y.tail<2>();
-    const double A = m_.accel_bound;
-    if constexpr (std::is_same_v<Wall, SegmentWall>) {
-      return {w_.normal.dot(x - w_.a), w_.normal.dot(v), A, never, x};
-    } else {
-      const double sign = w_.focusing ? 1 : -1;
-      const Vec2 p = x - w_.center;
-      const double rho = p.norm(), V = v.norm(), f = sign * (rho - w_.radius);
-      // Nearer the centre than the wall: the Lipschitz bound |f'| ≤ |v| (f'' is unbounded
-      // there, and p̂·v is 0/0 at the centre), as in the closed-form flights' scan.
-      if (rho < w_.radius / 2) return {f, f < 0 ? V : -V, A, never, x};
-      // As for the static force: over a step h ≤ ρ/(2(V + A)), |v| ≤ V + A h and |p| ≥ ρ/2.
-      const double h = rho / (2 * (V + A) + 1e-300), Vmax = V + A * h;
-      return {f, sign * p.dot(v) / rho, 2 * Vmax * Vmax / rho + A, h, x};
-    }
-  }
-
   const Wall& w_;
   const FieldFlight::Model& m_;
   double scale_;
@@ -279,17 +257,36 @@ double integrate_and_scan(const FieldFlight::Model& m, const FieldState& s, doub
   return never;
 }
 
-/// The earliest crossing within a step over several walls' scans (ties: the lower index).
-template <class Scans>
-void earliest_in_step(Scans& scans, int kind, const FieldPath::Step& step, double& tau, WallId& wall) {
-  for (std::size_t i = 0; i < scans.size(); ++i) {
-    const double t = scans[i].advance_to(step, tau);
-    if (t != never && (!wall.valid() || t < tau)) {
-      tau = t;
-      wall = {kind, int(i)};
+/// The scans of every wall of a table, kind by kind.
+template <class Kinds>
+struct TableScans;
+template <class... W>
+struct TableScans<std::tuple<W...>> {
+  std::tuple<std::vector<WallScan<W>>...> scans;
+  TableScans(const Table& table, const FieldFlight::Model& m, const FieldState& s) {
+    table.for_each_kind([&]<class K>(const std::vector<K>& walls, int) {
+      for (const auto& w : walls) std::get<std::vector<WallScan<K>>>(scans).emplace_back(w, m, s);
+    });
+  }
+  /// The earliest crossing within a step (ties: the first kind, then the lower index).
+  void earliest_in_step(const FieldPath::Step& step, double& tau, WallId& wall) {
+    [&]<std::size_t... k>(std::index_sequence<k...>) {
+      (earliest_of_kind(std::get<k>(scans), int(k), step, tau, wall), ...);
+    }(std::index_sequence_for<W...>{});
+  }
+
+ private:
+  template <class Scans>
+  static void earliest_of_kind(Scans& scans, int kind, const FieldPath::Step& step, double& tau, WallId& wall) {
+    for (std::size_t i = 0; i < scans.size(); ++i) {
+      const double t = scans[i].advance_to(step, tau);
+      if (t != never && (!wall.valid() || t < tau)) {
+        tau = t;
+        wall = {kind, int(i)};
+      }
     }
   }
-}
+};
 
 template <class Wall>
 double single_wall_exit(const FieldFlight::Model& m, const FieldState& s, const Wall& w, double t_end) {
@@ -321,11 +318,6 @@ Vec4 FieldPath::at(double tau) const {
 
 FieldFlight::FieldFlight(const Force& force, const std::optional<Potential>& potential, double mass,
                          const Table& table, double tolerance) {
-  // (Its event search scans segments and circular arcs; a field is not affine-covariant, so
-  // elliptic arcs would need a scan of their own.)
-  if (!table.elliptic_arcs().empty())
-    throw InputError(table.source_of({wall_kind::elliptic_arc, 0}).file, table.source_of({wall_kind::elliptic_arc, 0}).line,
-                     "elliptic walls are not supported with a position-dependent field or a potential");
   auto m = std::make_shared<Model>();
   m->mass = mass;
   m->potential = potential;
@@ -375,16 +367,12 @@ FieldState FieldFlight::advance(const FieldState& s, double t) const {
 }
 
 Hit FieldFlight::first_exit(const Table& table, const FieldState& s, double t_end) const {
-  std::vector<WallScan<SegmentWall>> segments;
-  std::vector<WallScan<ArcWall>> arcs;
-  for (const auto& w : table.segments()) segments.emplace_back(w, *model_, s);
-  for (const auto& w : table.arcs()) arcs.emplace_back(w, *model_, s);
+  TableScans<Table::Kinds> scans(table, *model_, s);
   auto path = new_path();
   Hit best;
   const double tau = integrate_and_scan(*model_, s, t_end - s.t, *path, [&](const FieldPath::Step& step, double tau1) {
     double t = tau1;
-    earliest_in_step(segments, wall_kind::segment, step, t, best.wall);
-    earliest_in_step(arcs, wall_kind::arc, step, t, best.wall);
+    scans.earliest_in_step(step, t, best.wall);
     return best.found() ? t : never;
   });
   s.path = path;
@@ -395,13 +383,19 @@ Hit FieldFlight::first_exit(const Table& table, const FieldState& s, double t_en
   return best;
 }
 
-double FieldFlight::exit_time(const FieldState& s, const SegmentWall& w, double t_end) const {
+template <class Wall>
+double FieldFlight::exit_time(const FieldState& s, const Wall& w, double t_end) const {
   return single_wall_exit(*model_, s, w, t_end);
 }
 
-double FieldFlight::exit_time(const FieldState& s, const ArcWall& w, double t_end) const {
-  return single_wall_exit(*model_, s, w, t_end);
+namespace {
+/// Instantiates exit_time for every wall kind (a kind added to WallKinds needs no line here).
+template <class... W>
+auto exit_times(std::tuple<W...>*) {
+  return std::tuple{&FieldFlight::exit_time<W>...};
 }
+[[gnu::used]] const auto exit_times_of_every_kind = exit_times(static_cast<Table::Kinds*>(nullptr));
+}  // namespace
 
 double FieldFlight::potential(const Vec2& x) const { return model_->potential ? model_->potential->U(x) : 0.0; }
 double FieldFlight::mass() const { return model_->mass; }

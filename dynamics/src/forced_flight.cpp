@@ -97,6 +97,10 @@ Real driven_exit_time(const Q& q, const Wall& w, const Real& t0, const Real& t_e
   return tau == never ? Real(never) : Real(t0 + tau);
 }
 
+/// Does a wall of kind W have windows along the flight q (`gap_along`: segments and arcs)?
+template <class W, class Q>
+concept has_windows = requires(const W& w, const Q& q) { w.gap_along(q); };
+
 /// fn(wall): the segment or arc `id` of the table.
 template <class Real, class Fn>
 void with_wall(const BasicTable<Real>& table, const WallId& id, Fn&& fn) {
@@ -146,16 +150,20 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
     detail::try_every_wall(table, *this, best);
   } else {
     first_hit_in_windows(table, quiver, best, phase);
-    // Elliptic arcs, searched as unit arcs by the mapped flight, have no windows here.
-    const auto& ellipses = table.elliptic_arcs();
-    for (int i = 0, n = int(ellipses.size()); i < n; ++i) {
-      const Real t = exit_time(ellipses[i], best.t);
-      if (t < best.t) {
-        best.t = t;
-        best.wall = {wall_kind::elliptic_arc, i};
-        phase = {};
+    // The kinds without windows here (elliptic arcs, searched as unit arcs by the mapped
+    // flight), wall by wall.
+    table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+      if constexpr (!has_windows<W, decltype(quiver)>) {
+        for (int i = 0, n = int(walls.size()); i < n; ++i) {
+          const Real t = exit_time(walls[i], best.t);
+          if (t < best.t) {
+            best.t = t;
+            best.wall = {kind, i};
+            phase = {};
+          }
+        }
       }
-    }
+    });
   }
   if (!best.found()) return {best, {}};
   // (The state made in place, as `collision` makes the hit: see there.)

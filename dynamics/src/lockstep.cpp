@@ -58,7 +58,7 @@ Kernel chosen_kernel() {
 LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flight, lockstep::Kernel kernel)
     : table_(&table), flight_(&flight), kernel_(kernel) {
   const auto& arcs = table.arcs();
-  usable_ = kernel && table.segments().empty() && table.elliptic_arcs().empty() && !arcs.empty() && arcs.size() <= std::size_t(lockstep::max_arcs);
+  usable_ = kernel && !arcs.empty() && table.wall_count() == arcs.size() && arcs.size() <= std::size_t(lockstep::max_arcs);
   if (!usable_) return;
   // The drive's numbers as every flight's Quiver computes them.
   DrivenState rest;

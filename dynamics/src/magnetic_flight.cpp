@@ -135,6 +135,11 @@ template <class Real>
   return outward_half_angle(F0, B1, B2, disc, near);
 }
 
+/// Has the orbit a closed-form crossing with walls of kind W (`crossing`)?  The others are
+/// scanned (Gyration::exit_time's template).
+template <class Real, class W>
+concept has_closed_form = requires(const Gyration<Real>& g, const W& w) { crossing(g, w); };
+
 /// The certified scan's sample of a conic wall (an ellipse, or a circle: L = I/r): its gap
 /// f = ±m(|u|² − 1)/2 (u = L(x − c), m the smaller semi-axis: to first order the distance beyond
 /// the wall), f' = ±m u·Lv, and |f''| ≤ m|Lv|² + m|u| |La| ≤ (V² + P A)/m while |v| ≤ V, |a| ≤ A,
@@ -145,12 +150,6 @@ scan::Sample<Real, Vec> conic_sample(const Real& sign, const Real& m, const Vec&
   return {sign * m * (u.squaredNorm() - 1) / 2, sign * m * u.dot(Lv), (V * V + P * A) / m, cap, x};
 }
 
-/// The rounding band of a scanned gap: the wall's slack, and the rounding of positions of size
-/// `scale` reached at speed V after τ, in units of the gap (× scale/m for a conic).
-template <class Real>
-Real scan_tolerance(const Real& slack, const Real& scale, const Real& V, const Real& tau, const Real& stretch) {
-  return slack + 16 * scan::eps<Real> * (scale + V * tau) * stretch;
-}
 
 
 /// The first time t ≥ τ at which |q0 + t u| ≤ R (`inward`) or ≥ R (outward), or +∞: where the
@@ -222,25 +221,27 @@ auto Gyration<Real, D>::first_hit(const BasicTable<Real>& table, const Real& t_e
   // The closed forms: the earliest crossing within its wall's span (ties: the first wall).
   Vec2T<Real> best = Vec2T<Real>::Zero();
   bool has_best = false;
-  auto closed_forms = [&](const auto& walls, int kind) {
-    for (int i = 0, n = int(walls.size()); i < n; ++i) {
-      const Vec2T<Real> u = crossing(*this, walls[i]);
-      if ((u.x() == 0 && u.y() == 0) || (has_best && !earlier(u, best))) continue;
-      if (walls[i].within_span(position_at_half_angle(u))) best = u, has_best = true, hit.wall = {kind, i};
+  table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+    if constexpr (has_closed_form<Real, W>) {
+      for (int i = 0, n = int(walls.size()); i < n; ++i) {
+        const Vec2T<Real> u = crossing(*this, walls[i]);
+        if ((u.x() == 0 && u.y() == 0) || (has_best && !earlier(u, best))) continue;
+        if (walls[i].within_span(position_at_half_angle(u))) best = u, has_best = true, hit.wall = {kind, i};
+      }
     }
-  };
-  closed_forms(table.segments(), wall_kind::segment);
-  closed_forms(table.arcs(), wall_kind::arc);
+  });
   if (has_best) {
     if (const Real t = time_at(*this, best); t < t_end) hit.t = t;
     else hit.wall = {};
   }
-  // The elliptic arcs' scans, each up to the best hit so far.
+  // The scans of the other kinds' walls, each up to the best hit so far.
   bool scanned = false;
-  for (int i = 0, n = int(table.elliptic_arcs().size()); i < n; ++i) {
-    if (const Real t = exit_time(table.elliptic_arcs()[i], hit.t); t < hit.t)
-      hit.t = t, hit.wall = {wall_kind::elliptic_arc, i}, scanned = true;
-  }
+  table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+    if constexpr (!has_closed_form<Real, W>) {
+      for (int i = 0, n = int(walls.size()); i < n; ++i)
+        if (const Real t = exit_time(walls[i], hit.t); t < hit.t) hit.t = t, hit.wall = {kind, i}, scanned = true;
+    }
+  });
   if (!hit.found()) return hit;
   hit.state = s;
   hit.state.t = hit.t;
@@ -255,20 +256,6 @@ auto Gyration<Real, D>::first_hit(const BasicTable<Real>& table, const Real& t_e
 }
 
 template <class Real, int D>
-template <class Wall>
-bool Gyration<Real, D>::may_reach(const Wall& w, const Real& t_end) const
-  requires(D == 2) {
-  const Real margin = rounding + 16 * scan::eps<Real> * w.bound_radius;
-  const Real reach = radius + w.bound_radius + margin, inner = radius - w.bound_radius - margin;
-  const Real d2 = (center - w.bound_center).squaredNorm();
-  if (d2 > reach * reach || (inner > 0 && d2 < inner * inner)) return false;
-  if (t_end == never) return true;
-  // The arc flown until t_end is no shorter than its chord.
-  const Real travel = speed * (t_end - s.t) + w.bound_radius + margin;
-  return (s.x - w.bound_center).squaredNorm() <= travel * travel;
-}
-
-template <class Real, int D>
 Real Gyration<Real, D>::exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const
   requires(D == 2) {
   return may_reach(w, t_end) ? exit_at(*this, w, crossing(*this, w), t_end) : Real(never);
@@ -278,29 +265,6 @@ template <class Real, int D>
 Real Gyration<Real, D>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) const
   requires(D == 2) {
   return may_reach(w, t_end) ? exit_at(*this, w, crossing(*this, w), t_end) : Real(never);
-}
-
-template <class Real, int D>
-Real Gyration<Real, D>::exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const
-  requires(D == 2) {
-  using std::max;
-  using std::min;
-  if (!may_reach(w, t_end)) return never;
-  // Along the whole circle |v| = |v0|, |a| = k|v0| and |x − c| ≤ P.
-  const Real sign = w.focusing ? 1 : -1, m = min(w.a, w.b);
-  const Real P = (s.x - w.center).norm() + 2 * radius + max(w.a, w.b);
-  auto sample = [&](const Real& tau) {
-    const auto [x, v] = at(tau);
-    return conic_sample(sign, m, w.to_unit(x), V(w.map * v), speed, Real(k * speed), P, Real(never), x);
-  };
-  auto tolerance = [&](const Real& tau) { return scan_tolerance(w.slack, P, speed, tau, Real(P / m)); };
-  auto earliest = [](const Real& tau) { return tau; };
-  auto in_span = [&](const V& x) { return w.within_span(x); };
-  // One turn holds every crossing the orbit will ever make.
-  const Real turn = period();
-  const Real tau_end = t_end == never ? turn : min(Real(t_end - s.t), turn);
-  const Real tau = scan::first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
-  return tau == never ? Real(never) : Real(s.t + tau);
 }
 
 // ---- Helices (3-D) ---------------------------------------------------------------------------
@@ -332,7 +296,7 @@ double Gyration<Real, D>::plane_exit(const Vec3& n, const Vec3& a, double slack,
   const double across = (n - n.dot(axis) * axis).norm(), M = k * speed * across, reach = radius * across;
   const double guide0 = n.dot(center - a), V = s.v.norm();
   const double scale = s.x.cwiseAbs().maxCoeff() + a.cwiseAbs().maxCoeff() + 2 * radius;
-  auto tolerance = [&](double tau) { return scan_tolerance(slack, scale, V, tau, 1.0); };
+  auto tolerance = [&](double tau) { return scan::rounding_band(slack, scale, V, tau, 1.0); };
   auto sample = [&](double tau) {
     const auto [x, v] = at(tau);
     return scan::Sample<double, Vec3>{n.dot(x - a), n.dot(v), M, never, x};
@@ -366,7 +330,7 @@ double Gyration<Real, D>::exit_time(const SphereWall& w, double t_end) const
   // |v| = V and |a| = k|v⊥| all along; |x − c| ≤ ρ + V h over a step h = (ρ + r)/V.
   const double sign = w.focusing ? 1 : -1, r = w.radius, V = s.v.norm();
   const double scale = (s.x - w.center).norm() + r + 2 * radius;
-  auto tolerance = [&](double tau) { return scan_tolerance(w.slack, scale, V, tau, scale / r); };
+  auto tolerance = [&](double tau) { return scan::rounding_band(w.slack, scale, V, tau, scale / r); };
   auto sample = [&](double tau) {
     const auto [x, v] = at(tau);
     const Vec3 p = x - w.center;
@@ -505,7 +469,7 @@ auto plane_gap(const Vec& n, const Vec& a) {
 }
 template <class Real>
 auto plane_tolerance(const Real& slack, const Real& scale) {
-  return [slack, scale](const Real& tau, const Real& V) { return scan_tolerance(slack, scale, V, tau, Real(1)); };
+  return [slack, scale](const Real& tau, const Real& V) { return scan::rounding_band(slack, scale, V, tau, Real(1)); };
 }
 
 /// The gap beyond a circle or sphere (centre c, radius r; `sign` + for a focusing wall), and its
@@ -521,7 +485,7 @@ auto round_gap(const Real& sign, const Vec& c, const Real& r) {
 }
 template <class Real>
 auto round_tolerance(const Real& slack, const Real& scale, const Real& r) {
-  return [slack, scale, r](const Real& tau, const Real& V) { return scan_tolerance(slack, scale, V, tau, Real(scale / r)); };
+  return [slack, scale, r](const Real& tau, const Real& V) { return scan::rounding_band(slack, scale, V, tau, Real(scale / r)); };
 }
 
 const auto everywhere = [](const auto&) { return true; };
@@ -568,17 +532,17 @@ Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const BasicArc
 }
 
 template <class Real, int D>
-Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const BasicEllipticArcWall<Real>& w,
-                                                  const Real& t_end) const
+template <class Wall>
+Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const Wall& w, const Real& t_end, Scanned) const
   requires(D == 2) {
-  using std::max;
   using std::min;
-  const Real sign = w.focusing ? 1 : -1, m = min(w.a, w.b), scale = (s.x - w.center).norm() + max(w.a, w.b);
-  auto gap = [&](const Vec2T<Real>& x, const Vec2T<Real>& v, const Real& V, const Real& A, const Real& cap) {
-    const Real rho = (x - w.center).norm(), h = min(cap, Real((rho + m) / V));
-    return conic_sample(sign, m, w.to_unit(x), Vec2T<Real>(w.map * v), V, A, Real(rho + V * h), h, x);
+  const Real scale = (s.x - w.bound_center).norm() + w.bound_radius;
+  auto gap = [&w](const Vec2T<Real>& x, const Vec2T<Real>& v, const Real&, const Real& A, const Real& cap) {
+    auto sample = w.gap_sample(x, v, A);
+    sample.cap = min(sample.cap, cap);
+    return sample;
   };
-  return driven_exit(*this, s, t_end, gap, round_tolerance(w.slack, scale, m),
+  return driven_exit(*this, s, t_end, gap, plane_tolerance(w.slack, scale),
                      [&](const Vec2T<Real>& x) { return w.within_span(x); });
 }
 
@@ -626,7 +590,6 @@ template std::pair<Vec2T<double>, Vec2T<double>> Gyration<double, 2>::at(const d
 template double Gyration<double, 2>::period() const;
 template double Gyration<double, 2>::exit_time(const BasicSegmentWall<double>&, const double&) const;
 template double Gyration<double, 2>::exit_time(const BasicArcWall<double>&, const double&) const;
-template double Gyration<double, 2>::exit_time(const BasicEllipticArcWall<double>&, const double&) const;
 template FlightHit<BasicMagneticFlight<double>> Gyration<double, 2>::first_hit(const BasicTable<double>&, const double&) const;
 template BasicState<double> BasicMagneticFlight<double>::advance(const State&, const double&) const;
 template double BasicMagneticFlight<double>::period() const;
@@ -635,7 +598,6 @@ template std::pair<Vec2T<long double>, Vec2T<long double>> Gyration<long double,
 template long double Gyration<long double, 2>::period() const;
 template long double Gyration<long double, 2>::exit_time(const BasicSegmentWall<long double>&, const long double&) const;
 template long double Gyration<long double, 2>::exit_time(const BasicArcWall<long double>&, const long double&) const;
-template long double Gyration<long double, 2>::exit_time(const BasicEllipticArcWall<long double>&, const long double&) const;
 template FlightHit<BasicMagneticFlight<long double>> Gyration<long double, 2>::first_hit(const BasicTable<long double>&, const long double&) const;
 template BasicState<long double> BasicMagneticFlight<long double>::advance(const State&, const long double&) const;
 template long double BasicMagneticFlight<long double>::period() const;
@@ -644,7 +606,6 @@ template std::pair<Vec2T<Reference>, Vec2T<Reference>> Gyration<Reference, 2>::a
 template Reference Gyration<Reference, 2>::period() const;
 template Reference Gyration<Reference, 2>::exit_time(const BasicSegmentWall<Reference>&, const Reference&) const;
 template Reference Gyration<Reference, 2>::exit_time(const BasicArcWall<Reference>&, const Reference&) const;
-template Reference Gyration<Reference, 2>::exit_time(const BasicEllipticArcWall<Reference>&, const Reference&) const;
 template FlightHit<BasicMagneticFlight<Reference>> Gyration<Reference, 2>::first_hit(const BasicTable<Reference>&, const Reference&) const;
 template BasicState<Reference> BasicMagneticFlight<Reference>::advance(const State&, const Reference&) const;
 template Reference BasicMagneticFlight<Reference>::period() const;
@@ -652,12 +613,10 @@ template BasicDrivenState<double> BasicMagneticDriveFlight<double>::advance(cons
 template double BasicMagneticDriveFlight<double>::speed_bound(const State&, const double&) const;
 template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicSegmentWall<double>&, const double&) const;
 template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicArcWall<double>&, const double&) const;
-template double BasicMagneticDriveFlight<double>::exit_time(const State&, const BasicEllipticArcWall<double>&, const double&) const;
 template BasicDrivenState<long double> BasicMagneticDriveFlight<long double>::advance(const State&, const long double&) const;
 template long double BasicMagneticDriveFlight<long double>::speed_bound(const State&, const long double&) const;
 template long double BasicMagneticDriveFlight<long double>::exit_time(const State&, const BasicSegmentWall<long double>&, const long double&) const;
 template long double BasicMagneticDriveFlight<long double>::exit_time(const State&, const BasicArcWall<long double>&, const long double&) const;
-template long double BasicMagneticDriveFlight<long double>::exit_time(const State&, const BasicEllipticArcWall<long double>&, const long double&) const;
 template Gyration<double, 3>::Gyration(const MagneticFlight3&, const State3&);
 template std::pair<Vec3, Vec3> Gyration<double, 3>::at(const double&) const;
 template double Gyration<double, 3>::period() const;
@@ -672,5 +631,17 @@ template double MagneticDriveFlight3::speed_bound(const State&, const double&) c
 template double MagneticDriveFlight3::exit_time(const State&, const PlaneWall&, double) const;
 template double MagneticDriveFlight3::exit_time(const State&, const TriangleWall&, double) const;
 template double MagneticDriveFlight3::exit_time(const State&, const SphereWall&, double) const;
+
+namespace {
+/// Instantiates the magnetic drive's scanned exit time for every 2-D wall kind (a kind added
+/// to WallKinds needs no line here).
+template <class Real, class... W>
+auto scanned_exit_times(std::tuple<W...>*) {
+  return std::tuple{&BasicMagneticDriveFlight<Real>::template exit_time<W>...};
+}
+[[gnu::used]] const auto scanned_double = scanned_exit_times<double>(static_cast<WallKinds<double>*>(nullptr));
+[[gnu::used]] const auto scanned_long_double =
+    scanned_exit_times<long double>(static_cast<WallKinds<long double>*>(nullptr));
+}  // namespace
 
 }  // namespace billiards::dynamics

@@ -108,6 +108,32 @@ template <bool local_band = false, class Real, class SampleFn, class EarliestFn,
   throw std::runtime_error("certified root isolation did not converge in a million steps");
 }
 
+/// The rounding band of a scanned gap: the wall's slack, and the rounding of positions of size
+/// `scale` reached at speed V after τ, in units of the gap (× `stretch` for a gap measured in
+/// units other than the table's).
+template <class Real>
+Real rounding_band(const Real& slack, const Real& scale, const Real& V, const Real& tau, const Real& stretch = 1) {
+  return slack + 16 * eps<Real> * (scale + V * tau) * stretch;
+}
+
+/// The first outward crossing of wall w, within its span, by a motion known only through
+/// `at(τ)` → (x, v), τ after its start, with acceleration at most A and within `reach(τ)` of
+/// its start at τ: the certified scan of the wall's gap (the wall's `gap_sample`), its
+/// rounding band that of positions of size `scale` + reach(τ).  What a flight falls back on
+/// for a wall kind it has no closed form for.
+template <class Real, class Wall, class At, class Reach>
+Real gap_crossing(const Wall& w, At at, const Real& A, Reach reach, const Real& scale, const Real& tau_end) {
+  auto sample = [&](const Real& tau) {
+    const auto [x, v] = at(tau);
+    return w.gap_sample(x, v, A);
+  };
+  auto earliest = [](const Real& tau) { return tau; };
+  auto in_span = [&w](const auto& x) { return w.within_span(x); };
+  const Real size = scale + w.bound_center.template lpNorm<Eigen::Infinity>() + w.bound_radius;
+  auto tolerance = [&](const Real& tau) { return Real(w.slack + 16 * eps<Real> * (size + reach(tau))); };
+  return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
+}
+
 /// The `earliest` of a driven flight: f lies within the oscillation amplitude (and rounding)
 /// of its guiding part, so no collision can occur before the guide comes that close to the
 /// wall — `window_start(τ)`, τ itself when it is that close — nor in a window, up to the time

@@ -8,11 +8,11 @@
 // check all read the same piecewise polynomial the event search scanned.  (Boost.Odeint's dense
 // output keeps only the current step inside its stepper, hence a small integrator of our own.)
 //
-// Events: per step, each wall's signed distance f along the dense output is scanned by the
-// certified scan (certified_scan.hpp) with |f''| bounded by the acceleration bound A (a bound
-// on |∇U|/m + |F|/m over the table's bounding box, by sampling with a Lipschitz margin,
-// computed once) for a segment, and by 2V²/ρ + A for an arc: the scan cannot step over a
-// crossing of the polynomial trajectory.  The scan of a wall resumes across steps where it left
+// Events: per step, each wall's gap f along the dense output is scanned by the certified scan
+// (certified_scan.hpp) with |f''| bounded by the wall's `gap_sample` (walls.hpp) from the
+// acceleration bound A (a bound on |∇U|/m + |F|/m over the table's bounding box, by sampling
+// with a Lipschitz margin, computed once): A for a segment, 2V²/ρ + A for an arc or an
+// elliptic arc.  The scan cannot step over a crossing of the polynomial trajectory.  The scan of a wall resumes across steps where it left
 // off, so walls far away cost nothing per step.  The certificate is relative to the integrated
 // trajectory: a graze shallower than the integrator's error may be decided either way.
 //
@@ -78,8 +78,9 @@ class FieldFlight {
 
   State start(const BasicState<double>& s) const;
   State advance(const State& s, double t) const;
-  double exit_time(const State& s, const SegmentWall& w, double t_end) const;
-  double exit_time(const State& s, const ArcWall& w, double t_end) const;
+  /// Through any wall kind (field_flight.cpp instantiates every kind of WallKinds).
+  template <class Wall>
+  double exit_time(const State& s, const Wall& w, double t_end) const;
 
   /// U(x) (0 without a potential): ensembles record E = ½mv² + U.
   double potential(const Vec2& x) const;

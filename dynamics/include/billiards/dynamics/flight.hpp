@@ -5,10 +5,14 @@
 //   using State = ...;                      // derives from dynamics::BasicState<Scalar, D>
 //   State start(const dynamics::State& s) const;              // a particle's initial state
 //   State advance(const State& s, Scalar t) const;            // state at time t ≥ s.t
-//   Scalar exit_time(const State& s, const BasicSegmentWall<Scalar>& w, Scalar t_end) const;
-//   Scalar exit_time(const State& s, const BasicArcWall<Scalar>& w, Scalar t_end) const;
+//   Scalar exit_time(const State& s, const Wall& w, Scalar t_end) const;  // for every wall kind
 //   static constexpr bool conserves_energy;
-// and, in 3-D (D = 3), exit_time through each of walls3.hpp's primitives instead.
+// In 2-D, closed forms where they exist (straight lines and parabolas through segments and
+// arcs, circles through segments and arcs), and for every other wall kind a template that
+// scans the wall's gap along the flight (`scanned_exit_time` below: the wall's `gap_sample`,
+// the flight's motion and a bound on its acceleration), so that a new wall kind works with
+// every flight before any closed form is written for it.  In 3-D, exit_time through each of
+// walls3.hpp's primitives.
 // A flight under a uniform acceleration `accel` (or none) is covariant under affine maps:
 // `elliptic_exit_time` below gives its exit times through elliptic arcs from those through
 // circular arcs.
@@ -44,6 +48,21 @@ struct StraightScan3 {
   double exit_time(const SphereWall& w, double t_end) const { return straight_exit_time(s, w, t_end); }
 };
 
+/// The exit time through w of the flight from s at(τ) → (x, v) τ after s, with acceleration
+/// at most A and within reach(τ) of s.x: the certified scan of the wall's gap
+/// (scan::gap_crossing).  The flights' fallback for a wall kind they have no closed form for.
+template <class Real, class State, class Wall, class At, class Reach>
+Real scanned_exit_time(const State& s, const Wall& w, const Real& t_end, At at, const Real& A, Reach reach) {
+  const Real tau = scan::gap_crossing(w, at, A, reach, Real(s.x.template lpNorm<Eigen::Infinity>()), Real(t_end - s.t));
+  return tau == never ? Real(never) : Real(s.t + tau);
+}
+
+/// The last parameter of a flight's scanning `exit_time` template where the flight's closed
+/// forms are instantiated member by member (free_flight.cpp, magnetic_flight.cpp): always
+/// defaulted, it keeps the template apart from those explicit instantiations, which would
+/// otherwise name either.
+struct Scanned {};
+
 /// Straight flight at constant velocity (no force), in any scalar type (free_flight.cpp
 /// instantiates double, long double and precision.hpp's Reference) and dimension (3-D: double).
 template <class Real, int D = 2>
@@ -59,8 +78,16 @@ struct BasicFreeFlight {
     r.t = t;
     return r;
   }
-  Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
-  Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  /// The closed forms (free_flight.hpp, always inlined: the hot loop of free ensembles).
+  [[gnu::always_inline]] Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
+  [[gnu::always_inline]] Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  /// Through a wall kind with no closed form here: the scan of its gap along the line.
+  template <class Wall>
+  Real exit_time(const State& s, const Wall& w, const Real& t_end, Scanned = {}) const requires(D == 2) {
+    const Real V = s.v.norm();
+    return scanned_exit_time(s, w, t_end, [&](const Real& tau) { return std::pair{Vec2T<Real>(s.x + s.v * tau), s.v}; },
+                             Real(0), [V](const Real& tau) { return Real(V * tau); });
+  }
   StraightScan3 scan_from(const State& s) const requires(D == 3) { return StraightScan3(s); }
   template <class Wall>
   double exit_time(const State& s, const Wall& w, double t_end) const requires(D == 3) {

@@ -184,6 +184,13 @@ struct DrivenScan {
   Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const;
   Real exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const;
+  /// Through any other wall kind: the scan of its gap (scanned_exit_time), |a| ≤ |F|/m.
+  template <class Wall>
+  Real exit_time(const Wall& w, const Real& t_end) const {
+    const Quiver<Flight, BasicDrivenState<Real>>& q = quiver;
+    return scanned_exit_time(q.s, w, t_end, [&q](const Real& tau) { return q.at(tau); }, q.accel_norm,
+                             [&q](const Real& tau) { return Real(q.speed_bound * tau); });
+  }
   /// The first wall of the table the flight leaves through before t_end (the hit's t, wall and
   /// the flight's state there; wall −1 if none).  The walls' windows — the only stretches of the flight in which
   /// they can be hit — are searched in the order in which they open, so a wall whose window
@@ -298,6 +305,15 @@ struct BasicConstantForceFlight {
   State advance(const State& s, const Real& t) const;
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const;
   Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const;
+  /// Through any other wall kind: the scan of its gap along the parabola (scanned_exit_time).
+  template <class Wall>
+  Real exit_time(const State& s, const Wall& w, const Real& t_end) const {
+    const Real V = s.v.norm(), A = accel.norm();
+    auto at = [&](const Real& tau) {
+      return std::pair{Vec2T<Real>(s.x + (s.v + accel * (tau / 2)) * tau), Vec2T<Real>(s.v + accel * tau)};
+    };
+    return scanned_exit_time(s, w, t_end, at, A, [V, A](const Real& tau) { return Real((V + A * tau / 2) * tau); });
+  }
 };
 using ConstantForceFlight = BasicConstantForceFlight<double>;
 

@@ -63,7 +63,19 @@ struct Gyration {
 
   Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
-  Real exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  /// Through a wall with no closed form (elliptic arcs; any kind): the certified scan of its
+  /// gap (scan::gap_crossing, |a| = k |v|) over one turn, which holds every crossing the
+  /// orbit will ever make.
+  template <class Wall>
+  Real exit_time(const Wall& w, const Real& t_end, Scanned = {}) const requires(D == 2) {
+    using std::min;
+    if (!may_reach(w, t_end)) return never;
+    const Real tau_end = t_end == never ? period() : min(Real(t_end - s.t), period());
+    const Real tau = scan::gap_crossing(
+        w, [this](const Real& t) { return at(t); }, Real(k * speed), [this](const Real&) { return Real(2 * radius); },
+        Real(s.x.template lpNorm<Eigen::Infinity>()), tau_end);
+    return tau == never ? Real(never) : Real(s.t + tau);
+  }
   /// The first wall of the table the orbit leaves through before t_end, with the state there
   /// from the crossing's half angle where a closed form found it (no sine or cosine).  The
   /// closed forms' crossings are compared as half angles (cross products, no arctangent), so
@@ -79,7 +91,16 @@ struct Gyration {
   /// Can the orbit meet the wall's bounding disk (before t_end)?  Not when the disk lies wholly
   /// outside the cyclotron circle or wholly inside it.
   template <class Wall>
-  bool may_reach(const Wall& w, const Real& t_end) const requires(D == 2);
+  bool may_reach(const Wall& w, const Real& t_end) const requires(D == 2) {
+    const Real margin = rounding + 16 * scan::eps<Real> * w.bound_radius;
+    const Real reach = radius + w.bound_radius + margin, inner = radius - w.bound_radius - margin;
+    const Real d2 = (center - w.bound_center).squaredNorm();
+    if (d2 > reach * reach || (inner > 0 && d2 < inner * inner)) return false;
+    if (t_end == never) return true;
+    // The arc flown until t_end is no shorter than its chord.
+    const Real travel = speed * (t_end - s.t) + w.bound_radius + margin;
+    return (s.x - w.bound_center).squaredNorm() <= travel * travel;
+  }
 
   double exit_time(const PlaneWall& w, double t_end) const requires(D == 3);
   double exit_time(const TriangleWall& w, double t_end) const requires(D == 3);
@@ -160,7 +181,10 @@ struct BasicMagneticDriveFlight {
   State advance(const State& s, const Real& t) const;
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
   Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
-  Real exit_time(const State& s, const BasicEllipticArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  /// Through any other wall kind (elliptic arcs): the scan with the wall's own gap_sample.
+  /// (magnetic_flight.cpp instantiates it for every kind of WallKinds.)
+  template <class Wall>
+  Real exit_time(const State& s, const Wall& w, const Real& t_end, Scanned = {}) const requires(D == 2);
   double exit_time(const State& s, const PlaneWall& w, double t_end) const requires(D == 3);
   double exit_time(const State& s, const TriangleWall& w, double t_end) const requires(D == 3);
   double exit_time(const State& s, const SphereWall& w, double t_end) const requires(D == 3);

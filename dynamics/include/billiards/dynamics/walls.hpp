@@ -294,6 +294,23 @@ bool short_step(const Real& s, const Real& rate, const V& v, const V& w, const R
   return abs(s) * (abs(v.x()) + abs(v.y())) <= slack && abs(s) * w1 * w1 <= abs(rate) / 8;
 }
 
+/// `gap_sample` of a wall whose gap is ±(ρ − R), ρ the distance from its centre in units that
+/// lengthen no vector (an arc: |x − c| and its radius; an elliptic arc: m |u|, u = L(x − c),
+/// and m, its smaller semi-axis: m L lengthens no vector), with rate ρ' = `rate`, for a flight
+/// of speed V and acceleration within A.  Over h, the positive root of V h + A h²/2 = ρ/2,
+/// the flight moves by at most ρ/2, so ρ stays above ρ/2 and |v| below V + A h, and
+/// |f''| ≤ 2 (V + A h)²/ρ + A.  Nearer the centre than R/2 (where f'' is unbounded and ρ' is 0/0 at
+/// the centre), the Lipschitz bound |f'| ≤ |v| ≤ V + A τ instead.
+template <class Real, class V>
+scan::Sample<Real, V> radial_gap_sample(bool focusing, const Real& R, const Real& rho, const Real& rate,
+                                        const Real& speed, const Real& A, const V& x) {
+  using std::sqrt;
+  const Real sign = focusing ? 1 : -1, f = sign * (rho - R);
+  if (rho < R / 2) return {f, f < 0 ? speed : Real(-speed), A, Real(never), x};
+  const Real h = rho / (speed + sqrt(speed * speed + A * rho)), vmax = speed + A * h;
+  return {f, sign * rate, 2 * vmax * vmax / rho + A, h, x};
+}
+
 template <class Real>
 struct BasicSegmentWall {
   using V = Vec2T<Real>;
@@ -347,6 +364,12 @@ struct BasicSegmentWall {
     return up ? (side > 0 ? 1 : 0) : (side < 0 ? -1 : 0);
   }
   Real gap(const V& p) const { return normal.dot(p - a); }
+  /// The gap at a point x of a flight with velocity v and acceleration within A, its rate, and
+  /// the bound on its second derivative: what the certified scan needs of a wall to search a
+  /// flight that has no closed form for it (scan::gap_crossing).
+  scan::Sample<Real, V> gap_sample(const V& x, const V& v, const Real& A) const {
+    return {gap(x), normal.dot(v), A, Real(never), x};
+  }
   template <class Q>
   scan::PlaneGap<Q, V> gap_along(const Q& q) const { return {q, normal, a, slack}; }
   /// Can a point within `pad` of the segment [p, q] lie in the span?  The span is an
@@ -385,6 +408,8 @@ struct BasicArcWall {
   Real slack;          // absolute tolerance (distance units)
   V bound_center;      // a disk holding the arc and its span's slack: the one on its chord
   Real bound_radius;   // (Thales) up to a half circle, else the circle's own
+  Real span_tol;       // slack × radius: within_span's tolerance on its cross products
+  Real near;           // 2 radius × slack: within rounding of the circle, in units of |x − c|² − r²
 
   explicit BasicArcWall(const geometry::Arc& arc)
       : center(arc.center.cast<Real>()), radius(arc.radius), radius2(radius * radius),
@@ -398,12 +423,19 @@ struct BasicArcWall {
     const bool chord = !full && ccw_extent <= geometry::pi;
     bound_center = chord ? V(center + (from + to) / 2) : center;
     bound_radius = (chord ? Real((to - from).norm() / 2) : radius) + slack;
+    set_slack(slack);
+  }
+  /// Sets the slack and the tolerances made from it.
+  void set_slack(const Real& s) {
+    slack = s;
+    span_tol = slack * radius;
+    near = 2 * radius * slack;
   }
   /// Is p (on the circle, to rounding) within the arc, ends included?
   bool within_span(const V& p) const {
     if (full) return true;
     const V u = p - center;
-    const Real tol = slack * radius;
+    const Real tol = span_tol;
     if (ccw_extent <= geometry::pi) return cross(from, u) >= -tol && cross(u, to) >= -tol;
     // More than a half circle: inside unless strictly within the complementary arc (< π).
     return !(cross(to, u) > tol && cross(u, from) > tol);
@@ -472,6 +504,11 @@ struct BasicArcWall {
   Real gap(const V& p) const {
     const Real d = (p - center).norm() - radius;
     return focusing ? d : Real(-d);
+  }
+  scan::Sample<Real, V> gap_sample(const V& x, const V& v, const Real& A) const {
+    const V p = x - center;
+    const Real rho = p.norm();
+    return radial_gap_sample(focusing, radius, rho, Real(p.dot(v) / rho), Real(v.norm()), A, x);
   }
   template <class Q>
   scan::SphereGap<Q, V> gap_along(const Q& q) const { return {q, center, radius, focusing, slack}; }
@@ -549,7 +586,7 @@ struct BasicEllipticArcWall {
     slack = span_slack_ulps<Real> * max({a, b, Real(center.template lpNorm<Eigen::Infinity>())});
     const Real unit_slack = slack / min(a, b);
     unit.bound_radius += unit_slack - unit.slack;
-    unit.slack = unit_slack;
+    unit.set_slack(unit_slack);
     bound_center = center;
     bound_radius = max(a, b) + slack;
   }
@@ -560,6 +597,15 @@ struct BasicEllipticArcWall {
     return focusing ? d : Real(-d);
   }
   bool within_span(const V& p) const { return unit.within_span(to_unit(p)); }
+  /// In mapped units scaled by the smaller semi-axis m (the map shrinks no length by more
+  /// than m): ρ = m |u|, ρ' = m u·Lv / |u|.
+  scan::Sample<Real, V> gap_sample(const V& x, const V& v, const Real& A) const {
+    using std::min;
+    const Real m = min(a, b);
+    const V u = to_unit(x);
+    const Real mu = u.norm();
+    return radial_gap_sample(focusing, m, Real(m * mu), Real(m * u.dot(map * v) / mu), Real(v.norm()), A, x);
+  }
   /// Where the flight through the hit point p with velocity v meets the ellipse, and the
   /// region's outward unit normal there: as for arcs, one Newton step along the flight in
   /// mapped units (the map keeps lines), or, where the step is not short, the radial

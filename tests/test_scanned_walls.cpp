@@ -1,0 +1,169 @@
+// The flights' fallback for a wall kind they have no closed form for: the certified scan of the
+// wall's gap (walls.hpp's `gap_sample`, flight.hpp's `scanned_exit_time`).  Called explicitly
+// (the `Scanned` overloads) on the kinds that do have closed forms, it must find the same exit
+// times: an independent method for every flight and every 2-D wall kind.  And the numerical
+// field flight, which searches every kind by that scan, against the closed-form flights in
+// tables with elliptic walls.
+#include "billiards/dynamics/collision.hpp"
+#include "billiards/dynamics/field_flight.hpp"
+#include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics/magnetic_flight.hpp"
+#include "billiards/dynamics/random.hpp"
+#include "billiards/geometry/shape_file.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace billiards;
+using dynamics::never;
+using dynamics::Vec2;
+
+namespace {
+
+const double pi = geometry::pi;
+
+dynamics::Table table_of(const std::string& name) {
+  return dynamics::Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + name + ".yaml").region);
+}
+
+/// Both `never`, or equal within `tol` (relative to 1 + |t|).
+bool same_time(double a, double b, double tol) {
+  if (a == never || b == never) return a == b;
+  return std::abs(a - b) <= tol * (1 + std::abs(a));
+}
+
+/// For each of 40 microcanonical states and every wall of the table: the closed form
+/// `closed(s, wall)` and the scan `scanned(s, wall)` agree; returns how many exit times were
+/// finite, so that the comparison is not vacuous (a state leaves through one or two walls
+/// within the horizon; fewer in a magnetic field, whose small circles miss most walls).
+template <class Start, class Closed, class Scan>
+int compare_every_wall(const dynamics::Table& table, Start start, Closed closed, Scan scanned, double tol) {
+  int finite = 0;
+  for (std::uint64_t p = 0; p < 40; ++p) {
+    dynamics::ParticleRng rng(21, p);
+    const auto s = start(dynamics::sample_microcanonical(table, 1.0, rng));
+    table.for_each_kind([&](const auto& walls, int kind) {
+      for (int i = 0; i < int(walls.size()); ++i) {
+        const double want = closed(s, walls[i]), got = scanned(s, walls[i]);
+        INFO("particle " << p << ", wall kind " << kind << " index " << i << ": closed form " << want << ", scan " << got);
+        CHECK(same_time(want, got, tol));
+        finite += want != never;
+      }
+    });
+  }
+  return finite;
+}
+
+}  // namespace
+
+TEST_CASE("the scan of a wall's gap equals every flight's closed forms, wall kind by wall kind") {
+  const double horizon = 3;
+  for (const char* name : {"stadium", "clover", "sinai-ellipse", "elliptic-stadium"}) {
+    INFO("table " << name);
+    const auto table = table_of(name);
+    auto same = [](const auto& s) { return s; };
+    SECTION("straight lines") {
+      const dynamics::FreeFlight flight;
+      CHECK(compare_every_wall(
+                table, same, [&](const auto& s, const auto& w) { return dynamics::detail::WallByWall<dynamics::FreeFlight>{flight, s}.exit_time(w, never); },
+                [&](const auto& s, const auto& w) { return flight.exit_time(s, w, never, dynamics::Scanned{}); }, 1e-12) >= 15);
+    }
+    SECTION("parabolas") {
+      const dynamics::ConstantForceFlight flight{Vec2(0.3, -0.8)};
+      CHECK(compare_every_wall(
+                table, same, [&](const auto& s, const auto& w) { return dynamics::detail::WallByWall<dynamics::ConstantForceFlight>{flight, s}.exit_time(w, s.t + horizon); },
+                [&](const auto& s, const auto& w) { return flight.template exit_time<std::decay_t<decltype(w)>>(s, w, s.t + horizon); }, 1e-10) >= 15);
+    }
+    SECTION("the periodic drive, lab frame and quivering walls") {
+      for (const double omega : {2 * pi, 40 * pi}) {
+        INFO("omega " << omega);
+        const dynamics::PeriodicDriveFlight lab{Vec2(3, 4), omega, 0.3};
+        const dynamics::QuiveringWallFlight walls{Vec2(3, 4), omega, 0.3};
+        auto start_lab = [&](const auto& s) { return lab.start(s); };
+        auto start_walls = [&](const auto& s) { return walls.start(s); };
+        CHECK(compare_every_wall(
+                  table, start_lab, [&](const auto& s, const auto& w) { return lab.scan_from(s).exit_time(w, s.t + horizon); },
+                  [&](const auto& s, const auto& w) { return lab.scan_from(s).template exit_time<std::decay_t<decltype(w)>>(w, s.t + horizon); }, 1e-10) >= 15);
+        CHECK(compare_every_wall(
+                  table, start_walls, [&](const auto& s, const auto& w) { return walls.scan_from(s).exit_time(w, s.t + horizon); },
+                  [&](const auto& s, const auto& w) { return walls.scan_from(s).template exit_time<std::decay_t<decltype(w)>>(w, s.t + horizon); }, 1e-10) >= 15);
+      }
+    }
+    SECTION("circles in a magnetic field") {
+      // (Elliptic arcs have no closed form here: both sides scan them.)
+      for (const double omega_c : {0.5, -3.0}) {
+        const dynamics::MagneticFlight flight{omega_c};
+        CHECK(compare_every_wall(
+                  table, same, [&](const auto& s, const auto& w) { return flight.exit_time(s, w, never); },
+                  [&](const auto& s, const auto& w) { return flight.scan_from(s).exit_time(w, never, dynamics::Scanned{}); }, 1e-10) >= 15);
+      }
+    }
+    SECTION("a magnetic field with a force") {
+      const dynamics::MagneticDriveFlight flight{1.5, Vec2(0.4, -0.3), 5.0, 0.2};
+      auto start = [&](const auto& s) { return flight.start(s); };
+      CHECK(compare_every_wall(
+                table, start, [&](const auto& s, const auto& w) { return flight.exit_time(s, w, s.t + 1); },
+                [&](const auto& s, const auto& w) { return flight.exit_time(s, w, s.t + 1, dynamics::Scanned{}); }, 1e-10) >= 15);
+    }
+  }
+}
+
+TEST_CASE("the field flight in tables with elliptic walls reproduces the closed-form flights") {
+  // A uniform force given to the integrator as a field: its flights through elliptic arcs are
+  // the scan of their gap along the dense output; the closed forms map the flight to the unit
+  // circle instead (flight.hpp).
+  for (const char* name : {"sinai-ellipse", "elliptic-stadium", "ellipse"}) {
+    INFO("table " << name);
+    const auto table = table_of(name);
+    SECTION("static force") {
+      const Vec2 F(0.3, -0.8);
+      const dynamics::ConstantForceFlight exact{F};
+      dynamics::Force force;
+      force.kind = dynamics::Force::Kind::constant;
+      force.amplitude = F;
+      const dynamics::FieldFlight field(force, std::nullopt, 1.0, table, 1e-12);
+      int elliptic = 0;
+      for (int p = 0; p < 8; ++p) {
+        dynamics::ParticleRng rng(9, p);
+        auto s = dynamics::sample_microcanonical(table, 1.0, rng);
+        for (int k = 0; k < 25; ++k) {
+          const auto want = dynamics::collision(table, exact, s, s.t + 50);
+          const auto got = dynamics::collision(table, field, field.start(s), s.t + 50);
+          REQUIRE(want.found());
+          REQUIRE(got.wall == want.wall);
+          CHECK(std::abs(got.t - want.t) < 1e-8);
+          CHECK((got.point - want.point).norm() < 1e-8);
+          elliptic += got.wall.kind == dynamics::wall_kind::elliptic_arc;
+          dynamics::bounce(exact, s, want);
+        }
+      }
+      CHECK(elliptic >= 15);
+    }
+    SECTION("periodic drive") {
+      const Vec2 F(3, 4);
+      const double omega = 40 * pi;
+      const dynamics::PeriodicDriveFlight exact{F, omega, 0.3};
+      dynamics::Force force;
+      force.kind = dynamics::Force::Kind::periodic;
+      force.amplitude = F;
+      force.omega = omega;
+      force.phase = 0.3;
+      const dynamics::FieldFlight field(force, std::nullopt, 1.0, table, 1e-12);
+      for (int p = 0; p < 4; ++p) {
+        dynamics::ParticleRng rng(7, p);
+        auto s = exact.start(dynamics::sample_microcanonical(table, 1.0, rng));
+        for (int k = 0; k < 25; ++k) {
+          const auto want = dynamics::collision(table, exact, s);
+          const auto got = dynamics::collision(table, field, field.start(s));
+          REQUIRE(want.found());
+          REQUIRE(got.wall == want.wall);
+          CHECK(std::abs(got.t - want.t) < 1e-8);
+          CHECK((got.point - want.point).norm() < 1e-8);
+          dynamics::bounce(exact, s, want);
+        }
+      }
+    }
+  }
+}
