@@ -100,25 +100,20 @@ Real driven_exit_time(const Q& q, const Wall& w, const Real& t0, const Real& t_e
 /// Does a wall of kind W have windows along the flight q (`gap_along`: segments and arcs)?
 template <class W, class Q>
 concept has_windows = requires(const W& w, const Q& q) { w.gap_along(q); };
+template <class Q>
+struct Windowed {
+  template <class W>
+  struct along : std::bool_constant<has_windows<W, Q>> {};
+};
 
-/// fn(wall): the segment or arc `id` of the table.
-template <class Real, class Fn>
-void with_wall(const BasicTable<Real>& table, const WallId& id, Fn&& fn) {
-  if (id.kind == wall_kind::segment)
-    fn(table.segments()[id.index]);
-  else
-    fn(table.arcs()[id.index]);
-}
-
-/// The first hit of the flight q among the table's segments and arcs before best.t, into
-/// `best` (t and wall) and `phase`.
+/// The first hit of the flight q among the table's walls that have windows before best.t,
+/// into `best` (t and wall) and `phase`.
 template <class Real, class Q>
 void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Real>& best, PhaseSample<Real>& phase) {
   Real tau_best = best.t - q.s.t;
-  const int segments = int(table.segments().size());
-  const auto id = [segments](int w) { return w < segments ? WallId{wall_kind::segment, w} : WallId{wall_kind::arc, w - segments}; };
+  const NumberedWalls<BasicTable<Real>, Windowed<Q>::template along> walls(table);
   auto visit = [&](int w, auto&& fn) {
-    with_wall(table, id(w), [&](const auto& wall) {
+    walls.visit(w, [&](const auto& wall) {
       // A window in which the particle cannot reach the wall's span is passed unsampled.
       auto passes = [&](const Real& start, const Real& end) {
         return !wall.may_meet_span(q.guide(start), q.guide(end), q.delta);
@@ -128,10 +123,10 @@ void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Re
     });
   };
   int best_wall = -1;
-  scan::first_hit_in_windows(segments + int(table.arcs().size()), visit, tau_best, best_wall, phase);
+  scan::first_hit_in_windows(walls.count(), visit, tau_best, best_wall, phase);
   if (best_wall >= 0) {
     best.t = q.s.t + tau_best;
-    best.wall = id(best_wall);
+    best.wall = walls.id(best_wall);
   }
 }
 

@@ -178,6 +178,8 @@ Gyration<Real, D>::Gyration(const BasicMagneticFlight<Real, D>& flight, const Ba
     inv_k = 1 / k;
     v_perp = state.v;
     w0 = towards_center(state.v, flight.omega_c);
+    drift = V::Zero();
+    axis = V::Zero();
   } else {
     // (Projected with Ω itself, not the rounded unit vector b, and w0 scaled to |v⊥|: a fixed
     // rounding of |b| would otherwise bias |v(τ)|² by the same sign in every flight.)
@@ -533,17 +535,16 @@ Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const BasicArc
 
 template <class Real, int D>
 template <class Wall>
-Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const Wall& w, const Real& t_end, Scanned) const
-  requires(D == 2) {
+Real BasicMagneticDriveFlight<Real, D>::exit_time(const State& s, const Wall& w, const Real& t_end, Scanned) const {
   using std::min;
-  const Real scale = (s.x - w.bound_center).norm() + w.bound_radius;
-  auto gap = [&w](const Vec2T<Real>& x, const Vec2T<Real>& v, const Real&, const Real& A, const Real& cap) {
+  using V = VecN<Real, D>;
+  auto gap = [&w](const V& x, const V& v, const Real&, const Real& A, const Real& cap) {
     auto sample = w.gap_sample(x, v, A);
     sample.cap = min(sample.cap, cap);
     return sample;
   };
-  return driven_exit(*this, s, t_end, gap, plane_tolerance(w.slack, scale),
-                     [&](const Vec2T<Real>& x) { return w.within_span(x); });
+  return driven_exit(*this, s, t_end, gap, plane_tolerance(w.slack, Real(s.x.template lpNorm<Eigen::Infinity>())),
+                     [&](const V& x) { return w.within_span(x); });
 }
 
 template <class Real, int D>
@@ -633,15 +634,17 @@ template double MagneticDriveFlight3::exit_time(const State&, const TriangleWall
 template double MagneticDriveFlight3::exit_time(const State&, const SphereWall&, double) const;
 
 namespace {
-/// Instantiates the magnetic drive's scanned exit time for every 2-D wall kind (a kind added
-/// to WallKinds needs no line here).
-template <class Real, class... W>
+/// Instantiates the magnetic drive's scanned exit time for every wall kind (a kind added to
+/// WallKinds or WallKinds3 needs no line here).
+template <class Flight, class... W>
 auto scanned_exit_times(std::tuple<W...>*) {
-  return std::tuple{&BasicMagneticDriveFlight<Real>::template exit_time<W>...};
+  return std::tuple{&Flight::template exit_time<W>...};
 }
-[[gnu::used]] const auto scanned_double = scanned_exit_times<double>(static_cast<WallKinds<double>*>(nullptr));
+[[gnu::used]] const auto scanned_double =
+    scanned_exit_times<MagneticDriveFlight>(static_cast<WallKinds<double>*>(nullptr));
 [[gnu::used]] const auto scanned_long_double =
-    scanned_exit_times<long double>(static_cast<WallKinds<long double>*>(nullptr));
+    scanned_exit_times<BasicMagneticDriveFlight<long double>>(static_cast<WallKinds<long double>*>(nullptr));
+[[gnu::used]] const auto scanned_3 = scanned_exit_times<MagneticDriveFlight3>(static_cast<WallKinds3*>(nullptr));
 }  // namespace
 
 }  // namespace billiards::dynamics

@@ -159,28 +159,33 @@ void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, d
 
 namespace {
 
-/// The planes' and spheres' first hit by a driven flight, their windows searched in time order
-/// (as in 2-D: DrivenScan::first_hit).
+/// Is a 3-D wall of kind W searched in the time order of its windows along the driven flight
+/// `Q` (a gap along it, `gap_along`, and no BVH: planes and spheres)?
+template <class Q>
+struct Windowed {
+  template <class W>
+  struct along : std::bool_constant<requires(const W& w, const Q& q) { w.gap_along(q); } &&
+                                    !std::is_same_v<W, TriangleWall>> {};
+};
+
+/// The first hit by a driven flight among the walls searched by windows, in time order (as in
+/// 2-D: DrivenScan::first_hit).
 void first_hit_in_windows(const Table3& table, const Quiver<PeriodicDriveFlight3, DrivenState3>& q, double t_end,
                           Hit3& best) {
-  const auto& planes = table.planes();
-  const auto& spheres = table.spheres();
-  const int np = int(planes.size()), ns = int(spheres.size());
+  using Q = Quiver<PeriodicDriveFlight3, DrivenState3>;
+  const NumberedWalls<Table3, Windowed<Q>::template along> walls(table);
   auto never_passes = [](double, double) { return false; };  // no spans to cull by
   auto everywhere = [](const Vec3&) { return true; };
   auto visit = [&](int w, auto&& fn) {
-    if (w < np)
-      fn(planes[w].gap_along(q), never_passes, everywhere);
-    else
-      fn(spheres[w - np].gap_along(q), never_passes, everywhere);
+    walls.visit(w, [&](const auto& wall) { fn(wall.gap_along(q), never_passes, everywhere); });
   };
   double tau_best = t_end - q.s.t;
   int wall = -1;
   PhaseSample<double> phase;  // (unused: the hit's state is advanced afresh)
-  scan::first_hit_in_windows(np + ns, visit, tau_best, wall, phase);
+  scan::first_hit_in_windows(walls.count(), visit, tau_best, wall, phase);
   if (wall < 0) return;
   best.t = q.s.t + tau_best;
-  best.wall = wall < np ? WallId{wall_kind3::plane, wall} : WallId{wall_kind3::sphere, wall - np};
+  best.wall = walls.id(wall);
 }
 
 }  // namespace
@@ -214,20 +219,21 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
       }
     });
   } else {
-    const Quiver<Flight, typename Flight::State> q(flight, s);
-    const int walls = int(planes().size() + spheres().size());
-    if (q.creeping || walls > scan::windows_in_time_order_walls) {
-      for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
-        if constexpr (!std::is_same_v<W, TriangleWall>) {
-          for (int i = 0, n = int(walls.size()); i < n; ++i) {
-            const double t = flight.exit_time(s, walls[i], best.t);
-            if (t < best.t) best.t = t, best.wall = {kind, i};
-          }
+    using Q = Quiver<Flight, typename Flight::State>;
+    const Q q(flight, s);
+    const bool by_windows = !q.creeping && NumberedWalls<Table3, Windowed<Q>::template along>(*this).count() <=
+                                               scan::windows_in_time_order_walls;
+    if (by_windows) first_hit_in_windows(*this, q, t_end, best);
+    // Wall by wall: every kind but the triangles (below), or those without windows.
+    for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+      if constexpr (!std::is_same_v<W, TriangleWall>) {
+        if (by_windows && Windowed<Q>::template along<W>::value) return;
+        for (int i = 0, n = int(walls.size()); i < n; ++i) {
+          const double t = flight.exit_time(s, walls[i], best.t);
+          if (t < best.t) best.t = t, best.wall = {kind, i};
         }
-      });
-    } else {
-      first_hit_in_windows(*this, q, t_end, best);
-    }
+      }
+    });
     // The particle stays within δ = |F|/(mω²) of its guiding line: boxes grown by δ (and the
     // scan's rounding band) along that line hold every triangle it can cross.
     search_triangles(q.g0, q.u, q.delta + 2 * slack_, s.t, best,

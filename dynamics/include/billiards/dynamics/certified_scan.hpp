@@ -119,8 +119,9 @@ Real rounding_band(const Real& slack, const Real& scale, const Real& V, const Re
 /// The first outward crossing of wall w, within its span, by a motion known only through
 /// `at(τ)` → (x, v), τ after its start, with acceleration at most A and within `reach(τ)` of
 /// its start at τ: the certified scan of the wall's gap (the wall's `gap_sample`), its
-/// rounding band that of positions of size `scale` + reach(τ).  What a flight falls back on
-/// for a wall kind it has no closed form for.
+/// rounding band the wall's slack (which holds the rounding of the wall's own coordinates)
+/// and that of positions of size `scale` + reach(τ).  What a flight falls back on for a wall
+/// kind it has no closed form for.
 template <class Real, class Wall, class At, class Reach>
 Real gap_crossing(const Wall& w, At at, const Real& A, Reach reach, const Real& scale, const Real& tau_end) {
   auto sample = [&](const Real& tau) {
@@ -129,8 +130,7 @@ Real gap_crossing(const Wall& w, At at, const Real& A, Reach reach, const Real& 
   };
   auto earliest = [](const Real& tau) { return tau; };
   auto in_span = [&w](const auto& x) { return w.within_span(x); };
-  const Real size = scale + w.bound_center.template lpNorm<Eigen::Infinity>() + w.bound_radius;
-  auto tolerance = [&](const Real& tau) { return Real(w.slack + 16 * eps<Real> * (size + reach(tau))); };
+  auto tolerance = [&](const Real& tau) { return Real(w.slack + 16 * eps<Real> * (scale + reach(tau))); };
   return first_outward_crossing(sample, earliest, in_span, tolerance, tau_end);
 }
 

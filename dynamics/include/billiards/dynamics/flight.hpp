@@ -7,12 +7,11 @@
 //   State advance(const State& s, Scalar t) const;            // state at time t ≥ s.t
 //   Scalar exit_time(const State& s, const Wall& w, Scalar t_end) const;  // for every wall kind
 //   static constexpr bool conserves_energy;
-// In 2-D, closed forms where they exist (straight lines and parabolas through segments and
-// arcs, circles through segments and arcs), and for every other wall kind a template that
-// scans the wall's gap along the flight (`scanned_exit_time` below: the wall's `gap_sample`,
-// the flight's motion and a bound on its acceleration), so that a new wall kind works with
-// every flight before any closed form is written for it.  In 3-D, exit_time through each of
-// walls3.hpp's primitives.
+// Closed forms where they exist (straight lines and parabolas through segments and arcs,
+// circles through segments and arcs, and the 3-D primitives' own), and for every other wall
+// kind a template that scans the wall's gap along the flight (`scanned_exit_time` below: the
+// wall's `gap_sample`, the flight's motion and a bound on its acceleration), so that a new
+// wall kind works with every flight before any closed form is written for it.
 // A flight under a uniform acceleration `accel` (or none) is covariant under affine maps:
 // `elliptic_exit_time` below gives its exit times through elliptic arcs from those through
 // circular arcs.
@@ -36,18 +35,6 @@
 
 namespace billiards::dynamics {
 
-/// A 3-D straight flight's exit times from one state: the sheared ray of the watertight
-/// triangle test (walls3.hpp) is computed once per flight, not once per triangle (`collision`
-/// asks the flight for it with `scan_from(s)`).
-struct StraightScan3 {
-  const State3& s;
-  Ray ray;
-  explicit StraightScan3(const State3& st) : s(st), ray(st.x, st.v) {}
-  double exit_time(const PlaneWall& w, double t_end) const { return straight_exit_time(s, w, t_end); }
-  double exit_time(const TriangleWall& w, double t_end) const { return straight_exit_time(s, ray, w, t_end); }
-  double exit_time(const SphereWall& w, double t_end) const { return straight_exit_time(s, w, t_end); }
-};
-
 /// The exit time through w of the flight from s at(τ) → (x, v) τ after s, with acceleration
 /// at most A and within reach(τ) of s.x: the certified scan of the wall's gap
 /// (scan::gap_crossing).  The flights' fallback for a wall kind they have no closed form for.
@@ -62,6 +49,25 @@ Real scanned_exit_time(const State& s, const Wall& w, const Real& t_end, At at, 
 /// defaulted, it keeps the template apart from those explicit instantiations, which would
 /// otherwise name either.
 struct Scanned {};
+
+/// A 3-D straight flight's exit times from one state: the sheared ray of the watertight
+/// triangle test (walls3.hpp) is computed once per flight, not once per triangle (`collision`
+/// asks the flight for it with `scan_from(s)`).
+struct StraightScan3 {
+  const State3& s;
+  Ray ray;
+  explicit StraightScan3(const State3& st) : s(st), ray(st.x, st.v) {}
+  double exit_time(const PlaneWall& w, double t_end) const { return straight_exit_time(s, w, t_end); }
+  double exit_time(const TriangleWall& w, double t_end) const { return straight_exit_time(s, ray, w, t_end); }
+  double exit_time(const SphereWall& w, double t_end) const { return straight_exit_time(s, w, t_end); }
+  /// Through a wall kind with no closed form here: the scan of its gap along the line.
+  template <class Wall>
+  double exit_time(const Wall& w, double t_end) const {
+    const double V = s.v.norm();
+    return scanned_exit_time(s, w, t_end, [this](double tau) { return std::pair{Vec3(s.x + s.v * tau), s.v}; }, 0.0,
+                             [V](double tau) { return V * tau; });
+  }
+};
 
 /// Straight flight at constant velocity (no force), in any scalar type (free_flight.cpp
 /// instantiates double, long double and precision.hpp's Reference) and dimension (3-D: double).

@@ -229,6 +229,18 @@ struct BasicPeriodicDriveFlight {
   Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2) {
     return scan_from(s).exit_time(w, t_end);
   }
+  /// Through any other wall kind: in 2-D the scan's (DrivenScan), in 3-D the scan of the
+  /// wall's gap (scanned_exit_time), |a| ≤ |F|/m.
+  template <class Wall>
+  Real exit_time(const State& s, const Wall& w, const Real& t_end, Scanned = {}) const {
+    if constexpr (D == 2) {
+      return scan_from(s).exit_time(w, t_end);
+    } else {
+      const Quiver<BasicPeriodicDriveFlight, State> q(*this, s);
+      return scanned_exit_time(s, w, t_end, [&q](const Real& tau) { return q.at(tau); }, q.accel_norm,
+                               [&q](const Real& tau) { return Real(q.speed_bound * tau); });
+    }
+  }
   double exit_time(const State& s, const PlaneWall& w, double t_end) const requires(D == 3);
   /// Through the triangle's plane within its span (widened by its slack, as for straight
   /// flights, so that neighbours overlap at their shared edge and nothing slips between them).

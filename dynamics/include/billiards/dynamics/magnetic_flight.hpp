@@ -47,7 +47,7 @@ struct Gyration {
   const BasicState<Real, D>& s;
   Real k;         // |Ω|
   Real inv_k;     // 1/|Ω|
-  V axis;         // b = Ω/|Ω| (2-D: unused)
+  V axis;         // b = Ω/|Ω| (2-D: 0)
   V v_perp;       // v⊥, the velocity across the field (2-D: v0)
   V w0;           // v⊥ turned by a quarter turn towards the centre
   V drift;        // v∥, the velocity along the field (2-D: 0)
@@ -64,17 +64,39 @@ struct Gyration {
   Real exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
   Real exit_time(const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
   /// Through a wall with no closed form (elliptic arcs; any kind): the certified scan of its
-  /// gap (scan::gap_crossing, |a| = k |v|) over one turn, which holds every crossing the
-  /// orbit will ever make.
+  /// gap (scan::gap_crossing, |a| = k |v⊥|), over one turn where the orbit closes (it holds
+  /// every crossing the orbit will ever make), else while the guiding axis is within r_c of
+  /// the wall's box (3-D; an unbounded box needs a horizon or a closed form).
   template <class Wall>
-  Real exit_time(const Wall& w, const Real& t_end, Scanned = {}) const requires(D == 2) {
+  Real exit_time(const Wall& w, const Real& t_end, Scanned = {}) const {
     using std::min;
-    if (!may_reach(w, t_end)) return never;
-    const Real tau_end = t_end == never ? period() : min(Real(t_end - s.t), period());
+    Real tau_end = t_end == never ? Real(never) : Real(t_end - s.t);
+    if constexpr (D == 2) {
+      if (!may_reach(w, t_end)) return never;
+      tau_end = min(tau_end, period());
+    } else {
+      tau_end = min(tau_end, drift.isZero(0) ? period() : axis_leaves(w.box()));
+      if (!(tau_end >= 0)) return never;
+    }
     const Real tau = scan::gap_crossing(
-        w, [this](const Real& t) { return at(t); }, Real(k * speed), [this](const Real&) { return Real(2 * radius); },
+        w, [this](const Real& t) { return at(t); }, Real(k * speed), [this](const Real& t) { return Real(drift.norm() * t + 2 * radius); },
         Real(s.x.template lpNorm<Eigen::Infinity>()), tau_end);
     return tau == never ? Real(never) : Real(s.t + tau);
+  }
+  /// When the guiding axis x0 + w0/k + v∥ τ leaves the box (lo, hi) grown by r_c, for good
+  /// (3-D); −1 when it never comes within it.
+  double axis_leaves(const std::pair<Vec3, Vec3>& box) const requires(D == 3) {
+    const double pad = radius + rounding;
+    double out = never;
+    for (int i = 0; i < 3; ++i) {
+      const double lo = box.first[i] - pad, hi = box.second[i] + pad;
+      if (drift[i] == 0) {
+        if (center[i] < lo || center[i] > hi) return -1;
+        continue;
+      }
+      out = std::min(out, ((drift[i] > 0 ? hi : lo) - center[i]) / drift[i]);
+    }
+    return out;
   }
   /// The first wall of the table the orbit leaves through before t_end, with the state there
   /// from the crossing's half angle where a closed form found it (no sine or cosine).  The
@@ -182,9 +204,9 @@ struct BasicMagneticDriveFlight {
   Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
   Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
   /// Through any other wall kind (elliptic arcs): the scan with the wall's own gap_sample.
-  /// (magnetic_flight.cpp instantiates it for every kind of WallKinds.)
+  /// (magnetic_flight.cpp instantiates it for every kind of WallKinds and WallKinds3.)
   template <class Wall>
-  Real exit_time(const State& s, const Wall& w, const Real& t_end, Scanned = {}) const requires(D == 2);
+  Real exit_time(const State& s, const Wall& w, const Real& t_end, Scanned = {}) const;
   double exit_time(const State& s, const PlaneWall& w, double t_end) const requires(D == 3);
   double exit_time(const State& s, const TriangleWall& w, double t_end) const requires(D == 3);
   double exit_time(const State& s, const SphereWall& w, double t_end) const requires(D == 3);

@@ -7,6 +7,7 @@
 
 #include "billiards/dynamics/state.hpp"
 
+#include <array>
 #include <cstddef>
 #include <tuple>
 #include <utility>
@@ -70,6 +71,56 @@ class WallSet<std::tuple<W...>> {
     else return id.kind == int(k) ? fn(std::get<k>(walls_)[id.index]) : visit_kind<k + 1>(id, fn);
   }
   std::tuple<std::vector<W>...> walls_;
+};
+
+/// The walls of the kinds a search selects (`Select<W>::value`), numbered 0, 1, … kind by kind in
+/// the order of WallId::kind: for a search that keeps walls of several kinds in one list (the
+/// drive's windows in time order) instead of counting kinds by name.  `visit(w, fn)` calls
+/// fn(wall) for the wall numbered w through a chain of comparisons unrolled over the selected
+/// kinds (one comparison for two kinds), which the compiler inlines as it would a hand-written
+/// test.
+template <class Set, template <class> class Select>
+class NumberedWalls {
+ public:
+  explicit NumberedWalls(const Set& set) : set_(set) {
+    static_assert(has_selected_after<0>(), "NumberedWalls selects no kind");
+    int n = 0;
+    set.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+      first_[kind] = n;
+      if constexpr (Select<W>::value) n += int(walls.size());
+    });
+    count_ = n;
+  }
+  int count() const { return count_; }
+  WallId id(int w) const { return find<0>(w, [](const auto&, const WallId& id) { return id; }); }
+  template <class Fn>
+  decltype(auto) visit(int w, Fn&& fn) const {
+    return find<0>(w, [&](const auto& wall, const WallId&) -> decltype(auto) { return fn(wall); });
+  }
+
+ private:
+  /// fn(wall, id) for the wall numbered w, searched from kind k on.
+  template <std::size_t k, class Fn>
+  decltype(auto) find(int w, Fn&& fn) const {
+    using W = typename Set::template Kind<k>;
+    if constexpr (!Select<W>::value) {
+      return find<k + 1>(w, fn);
+    } else {
+      if constexpr (has_selected_after<k + 1>()) {
+        if (w >= first_[k + 1]) return find<k + 1>(w, fn);
+      }
+      const int i = w - first_[k];
+      return fn(set_.template walls<W>()[i], WallId{int(k), i});
+    }
+  }
+  template <std::size_t k>
+  static constexpr bool has_selected_after() {
+    if constexpr (k == Set::kind_count) return false;
+    else return Select<typename Set::template Kind<k>>::value || has_selected_after<k + 1>();
+  }
+  const Set& set_;
+  std::array<int, Set::kind_count> first_{};
+  int count_ = 0;
 };
 
 }  // namespace billiards::dynamics

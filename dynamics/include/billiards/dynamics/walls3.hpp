@@ -4,7 +4,8 @@
 // normal; within_span; contact (the hit point, as computed, and the normal there); box, a
 // bounding box (lo, hi) of the wall and its slack; curvature_at (signed, > 0 focusing: 1/r
 // in every direction for a sphere seen from inside, −1/r from outside, 0 for flat walls); and
-// `slack`, its rounding tolerance in distance units; and, for the certified scan of a driven
+// `slack`, its rounding tolerance in distance units; `gap_sample(x, v, A)`, what the certified
+// scan needs to search any flight against it (walls.hpp); and, for the scan of a driven
 // flight, `gap_along(q)`, the gap of its plane or sphere seen along the flight q (walls.hpp).
 //
 // Straight flights' exit times through them (`straight_exit_time`, walls3.cpp) follow the
@@ -50,6 +51,10 @@ struct PlaneWall {
   double offset;
   double slack;
   double gap(const Vec3& x) const { return normal.dot(x) - offset; }
+  /// As for 2-D walls (walls.hpp): the gap, its rate, and |f''| ≤ A.
+  scan::Sample<double, Vec3> gap_sample(const Vec3& x, const Vec3& v, double A) const {
+    return {gap(x), normal.dot(v), A, never, x};
+  }
   template <class Q>
   scan::PlaneGap<Q, Vec3> gap_along(const Q& q) const { return {q, normal, Vec3(normal * offset), slack}; }
   Vec3 normal_at(const Vec3&) const { return normal; }
@@ -82,6 +87,9 @@ struct TriangleWall {
     return true;
   }
   double gap(const Vec3& x) const { return normal.dot(x - p[0]); }
+  scan::Sample<double, Vec3> gap_sample(const Vec3& x, const Vec3& v, double A) const {
+    return {gap(x), normal.dot(v), A, never, x};
+  }
   /// (The triangle's plane: a lower bound of the distance from the triangle.)
   template <class Q>
   scan::PlaneGap<Q, Vec3> gap_along(const Q& q) const { return {q, normal, p[0], slack}; }
@@ -106,6 +114,11 @@ struct SphereWall {
   double gap(const Vec3& x) const {
     const double d = (x - center).norm() - radius;
     return focusing ? d : -d;
+  }
+  scan::Sample<double, Vec3> gap_sample(const Vec3& x, const Vec3& v, double A) const {
+    const Vec3 p = x - center;
+    const double rho = p.norm();
+    return radial_gap_sample(focusing, radius, rho, p.dot(v) / rho, v.norm(), A, x);
   }
   template <class Q>
   scan::SphereGap<Q, Vec3> gap_along(const Q& q) const { return {q, center, radius, focusing, slack}; }
