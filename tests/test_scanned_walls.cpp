@@ -2,11 +2,8 @@
 // wall's gap (walls.hpp's and walls3.hpp's `gap_sample`, flight.hpp's `scanned_exit_time`).
 // Called explicitly (the `Scanned` overloads) on the kinds that do have closed forms, it must
 // find the same exit times: an independent method for every flight and every wall kind, in
-// 2-D and 3-D.  And the numerical
-// field flight, which searches every kind by that scan, against the closed-form flights in
-// tables with elliptic walls.
+// 2-D and 3-D.
 #include "billiards/dynamics/collision.hpp"
-#include "billiards/dynamics/field_flight.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/magnetic_flight.hpp"
 #include "billiards/dynamics/random.hpp"
@@ -118,64 +115,6 @@ TEST_CASE("the scan of a wall's gap equals every flight's closed forms, wall kin
       CHECK(compare_every_wall(
                 table, start, [&](const auto& s, const auto& w) { return flight.exit_time(s, w, s.t + 1); },
                 [&](const auto& s, const auto& w) { return flight.exit_time(s, w, s.t + 1, dynamics::Scanned{}); }, 1e-10) >= 15);
-    }
-  }
-}
-
-TEST_CASE("the field flight in tables with elliptic walls reproduces the closed-form flights") {
-  // A uniform force given to the integrator as a field: its flights through elliptic arcs are
-  // the scan of their gap along the dense output; the closed forms map the flight to the unit
-  // circle instead (flight.hpp).
-  for (const char* name : {"sinai-ellipse", "elliptic-stadium", "ellipse"}) {
-    INFO("table " << name);
-    const auto table = table_of(name);
-    SECTION("static force") {
-      const Vec2 F(0.3, -0.8);
-      const dynamics::ConstantForceFlight exact{F};
-      dynamics::Force force;
-      force.kind = dynamics::Force::Kind::constant;
-      force.amplitude = F;
-      const dynamics::FieldFlight field(force, std::nullopt, 1.0, table, 1e-12);
-      int elliptic = 0;
-      for (int p = 0; p < 8; ++p) {
-        dynamics::ParticleRng rng(9, p);
-        auto s = dynamics::sample_microcanonical(table, 1.0, rng);
-        for (int k = 0; k < 25; ++k) {
-          const auto want = dynamics::collision(table, exact, s, s.t + 50);
-          const auto got = dynamics::collision(table, field, field.start(s), s.t + 50);
-          REQUIRE(want.found());
-          REQUIRE(got.wall == want.wall);
-          CHECK(std::abs(got.t - want.t) < 1e-8);
-          CHECK((got.point - want.point).norm() < 1e-8);
-          elliptic += got.wall.kind == dynamics::wall_kind::elliptic_arc;
-          dynamics::bounce(exact, s, want);
-        }
-      }
-      CHECK(elliptic >= 15);
-    }
-    SECTION("periodic drive") {
-      const Vec2 F(3, 4);
-      const double omega = 40 * pi;
-      const dynamics::PeriodicDriveFlight exact{F, omega, 0.3};
-      dynamics::Force force;
-      force.kind = dynamics::Force::Kind::periodic;
-      force.amplitude = F;
-      force.omega = omega;
-      force.phase = 0.3;
-      const dynamics::FieldFlight field(force, std::nullopt, 1.0, table, 1e-12);
-      for (int p = 0; p < 4; ++p) {
-        dynamics::ParticleRng rng(7, p);
-        auto s = exact.start(dynamics::sample_microcanonical(table, 1.0, rng));
-        for (int k = 0; k < 25; ++k) {
-          const auto want = dynamics::collision(table, exact, s);
-          const auto got = dynamics::collision(table, field, field.start(s));
-          REQUIRE(want.found());
-          REQUIRE(got.wall == want.wall);
-          CHECK(std::abs(got.t - want.t) < 1e-8);
-          CHECK((got.point - want.point).norm() < 1e-8);
-          dynamics::bounce(exact, s, want);
-        }
-      }
     }
   }
 }
