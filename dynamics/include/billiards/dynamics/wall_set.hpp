@@ -94,14 +94,14 @@ class NumberedWalls {
   int count() const { return count_; }
   WallId id(int w) const { return find<0>(w, [](const auto&, const WallId& id) { return id; }); }
   template <class Fn>
-  decltype(auto) visit(int w, Fn&& fn) const {
+  [[gnu::always_inline]] decltype(auto) visit(int w, Fn&& fn) const {
     return find<0>(w, [&](const auto& wall, const WallId&) -> decltype(auto) { return fn(wall); });
   }
 
  private:
   /// fn(wall, id) for the wall numbered w, searched from kind k on.
   template <std::size_t k, class Fn>
-  decltype(auto) find(int w, Fn&& fn) const {
+  [[gnu::always_inline]] decltype(auto) find(int w, Fn&& fn) const {
     using W = typename Set::template Kind<k>;
     if constexpr (!Select<W>::value) {
       return find<k + 1>(w, fn);

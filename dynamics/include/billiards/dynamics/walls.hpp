@@ -297,9 +297,10 @@ bool short_step(const Real& s, const Real& rate, const V& v, const V& w, const R
 /// `gap_sample` of a wall whose gap is ±(ρ − R), ρ the distance from its centre in units that
 /// lengthen no vector (an arc: |x − c| and its radius; an elliptic arc: m |u|, u = L(x − c),
 /// and m, its smaller semi-axis: m L lengthens no vector), with rate ρ' = `rate`, for a flight
-/// of speed V and acceleration within A.  Over h, the positive root of V h + A h²/2 = ρ/2,
-/// the flight moves by at most ρ/2, so ρ stays above ρ/2 and |v| below V + A h, and
-/// |f''| ≤ 2 (V + A h)²/ρ + A.  Nearer the centre than R/2 (where f'' is unbounded and ρ' is 0/0 at
+/// of speed V and acceleration within A.  Over h the flight moves by at most V h + A h²/2:
+/// h = ρ/(2(V + A)) keeps that within ρ/2 while h ≤ 2 (a short step keeps the bound small),
+/// beyond that the positive root of V h + A h²/2 = ρ/2, which is shorter.  So ρ stays above ρ/2
+/// and |v| below V + A h, and |f''| ≤ 2 (V + A h)²/ρ + A.  Nearer the centre than R/2 (where f'' is unbounded and ρ' is 0/0 at
 /// the centre), the Lipschitz bound |f'| ≤ |v| ≤ V + A τ instead.
 template <class Real, class V>
 scan::Sample<Real, V> radial_gap_sample(bool focusing, const Real& R, const Real& rho, const Real& rate,
@@ -307,7 +308,9 @@ scan::Sample<Real, V> radial_gap_sample(bool focusing, const Real& R, const Real
   using std::sqrt;
   const Real sign = focusing ? 1 : -1, f = sign * (rho - R);
   if (rho < R / 2) return {f, f < 0 ? speed : Real(-speed), A, Real(never), x};
-  const Real h = rho / (speed + sqrt(speed * speed + A * rho)), vmax = speed + A * h;
+  Real h = rho / (2 * (speed + A) + Real(1e-300));  // (1e-300: a particle at rest)
+  if (h > 2 && A > 0) h = rho / (speed + sqrt(speed * speed + A * rho));
+  const Real vmax = speed + A * h;
   return {f, sign * rate, 2 * vmax * vmax / rho + A, h, x};
 }
 
