@@ -296,14 +296,14 @@ bool short_step(const Real& s, const Real& rate, const V& v, const V& w, const R
 
 /// `gap_sample` of a wall whose gap is ±(ρ − R), ρ the distance from its centre in units that
 /// lengthen no vector (an arc: |x − c| and its radius; an elliptic arc: m |u|, u = L(x − c),
-/// and m, its smaller semi-axis: m L lengthens no vector), with rate ρ' = `rate`, for a flight
+/// and m, its smaller semi-axis: m L lengthens no vector), with ρ ρ' = `rho_rate`, for a flight
 /// of speed V and acceleration within A.  Over h the flight moves by at most V h + A h²/2:
 /// h = ρ/(2(V + A)) keeps that within ρ/2 while h ≤ 2 (a short step keeps the bound small),
 /// beyond that the positive root of V h + A h²/2 = ρ/2, which is shorter.  So ρ stays above ρ/2
 /// and |v| below V + A h, and |f''| ≤ 2 (V + A h)²/ρ + A.  Nearer the centre than R/2 (where f'' is unbounded and ρ' is 0/0 at
 /// the centre), the Lipschitz bound |f'| ≤ |v| ≤ V + A τ instead.
 template <class Real, class V>
-scan::Sample<Real, V> radial_gap_sample(bool focusing, const Real& R, const Real& rho, const Real& rate,
+scan::Sample<Real, V> radial_gap_sample(bool focusing, const Real& R, const Real& rho, const Real& rho_rate,
                                         const Real& speed, const Real& A, const V& x) {
   using std::sqrt;
   const Real sign = focusing ? 1 : -1, f = sign * (rho - R);
@@ -311,7 +311,7 @@ scan::Sample<Real, V> radial_gap_sample(bool focusing, const Real& R, const Real
   Real h = rho / (2 * (speed + A) + Real(1e-300));  // (1e-300: a particle at rest)
   if (h > 2 && A > 0) h = rho / (speed + sqrt(speed * speed + A * rho));
   const Real vmax = speed + A * h;
-  return {f, sign * rate, 2 * vmax * vmax / rho + A, h, x};
+  return {f, sign * rho_rate / rho, 2 * vmax * vmax / rho + A, h, x};
 }
 
 template <class Real>
@@ -510,8 +510,7 @@ struct BasicArcWall {
   }
   scan::Sample<Real, V> gap_sample(const V& x, const V& v, const Real& A) const {
     const V p = x - center;
-    const Real rho = p.norm();
-    return radial_gap_sample(focusing, radius, rho, Real(p.dot(v) / rho), Real(v.norm()), A, x);
+    return radial_gap_sample(focusing, radius, Real(p.norm()), Real(p.dot(v)), Real(v.norm()), A, x);
   }
   template <class Q>
   scan::SphereGap<Q, V> gap_along(const Q& q) const { return {q, center, radius, focusing, slack}; }
@@ -600,14 +599,12 @@ struct BasicEllipticArcWall {
     return focusing ? d : Real(-d);
   }
   bool within_span(const V& p) const { return unit.within_span(to_unit(p)); }
-  /// In mapped units scaled by the smaller semi-axis m (the map shrinks no length by more
-  /// than m): ρ = m |u|, ρ' = m u·Lv / |u|.
+  /// In mapped units scaled by the smaller semi-axis m: ρ = m |u|, ρ ρ' = m² u·Lv.
   scan::Sample<Real, V> gap_sample(const V& x, const V& v, const Real& A) const {
     using std::min;
     const Real m = min(a, b);
     const V u = to_unit(x);
-    const Real mu = u.norm();
-    return radial_gap_sample(focusing, m, Real(m * mu), Real(m * u.dot(map * v) / mu), Real(v.norm()), A, x);
+    return radial_gap_sample(focusing, m, Real(m * u.norm()), Real(m * m * u.dot(map * v)), Real(v.norm()), A, x);
   }
   /// Where the flight through the hit point p with velocity v meets the ellipse, and the
   /// region's outward unit normal there: as for arcs, one Newton step along the flight in

@@ -117,8 +117,7 @@ struct SphereWall {
   }
   scan::Sample<double, Vec3> gap_sample(const Vec3& x, const Vec3& v, double A) const {
     const Vec3 p = x - center;
-    const double rho = p.norm();
-    return radial_gap_sample(focusing, radius, rho, p.dot(v) / rho, v.norm(), A, x);
+    return radial_gap_sample(focusing, radius, p.norm(), p.dot(v), v.norm(), A, x);
   }
   template <class Q>
   scan::SphereGap<Q, Vec3> gap_along(const Q& q) const { return {q, center, radius, focusing, slack}; }
