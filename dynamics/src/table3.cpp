@@ -168,12 +168,12 @@ struct Windowed {
                                     !std::is_same_v<W, TriangleWall>> {};
 };
 
+using DriveQuiver3 = Quiver<PeriodicDriveFlight3, DrivenState3>;
+using WindowedWalls3 = NumberedWalls<Table3, Windowed<DriveQuiver3>::template along>;
+
 /// The first hit by a driven flight among the walls searched by windows, in time order (as in
 /// 2-D: DrivenScan::first_hit).
-void first_hit_in_windows(const Table3& table, const Quiver<PeriodicDriveFlight3, DrivenState3>& q, double t_end,
-                          Hit3& best) {
-  using Q = Quiver<PeriodicDriveFlight3, DrivenState3>;
-  const NumberedWalls<Table3, Windowed<Q>::template along> walls(table);
+void first_hit_in_windows(const WindowedWalls3& walls, const DriveQuiver3& q, double t_end, Hit3& best) {
   auto never_passes = [](double, double) { return false; };  // no spans to cull by
   auto everywhere = [](const Vec3&) { return true; };
   auto visit = [&](int w, auto&& fn) {
@@ -219,15 +219,14 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
       }
     });
   } else {
-    using Q = Quiver<Flight, typename Flight::State>;
-    const Q q(flight, s);
-    const bool by_windows = !q.creeping && NumberedWalls<Table3, Windowed<Q>::template along>(*this).count() <=
-                                               scan::windows_in_time_order_walls;
-    if (by_windows) first_hit_in_windows(*this, q, t_end, best);
+    const DriveQuiver3 q(flight, s);
+    const WindowedWalls3 windowed(*this);
+    const bool by_windows = !q.creeping && windowed.count() <= scan::windows_in_time_order_walls;
+    if (by_windows) first_hit_in_windows(windowed, q, t_end, best);
     // Wall by wall: every kind but the triangles (below), or those without windows.
     for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
       if constexpr (!std::is_same_v<W, TriangleWall>) {
-        if (by_windows && Windowed<Q>::template along<W>::value) return;
+        if (by_windows && Windowed<DriveQuiver3>::template along<W>::value) return;
         for (int i = 0, n = int(walls.size()); i < n; ++i) {
           const double t = flight.exit_time(s, walls[i], best.t);
           if (t < best.t) best.t = t, best.wall = {kind, i};
