@@ -187,8 +187,12 @@ class WallScan {
     scale_ = m.scale + (s.x - w.bound_center).norm();
   }
 
-  double advance_to(const FieldPath::Step& step, double tau1) {
-    if (resume_ > tau1) return never;
+  double advance_to(const FieldPath::Step& step, double tau1) { return resume_ > tau1 ? never : scan_step(step, tau1); }
+
+ private:
+  /// (Out of line: most steps end before the scan's resume point, and that test should not pay
+  /// for the scan's frame.)
+  [[gnu::noinline]] double scan_step(const FieldPath::Step& step, double tau1) {
     const double start = resume_;
     auto tolerance = [&](double tau) {
       return w_.slack + 8 * scan::eps<double> * (scale_ + start + tau) + 4 * m_.tolerance * m_.scale;
@@ -206,7 +210,6 @@ class WallScan {
     return never;
   }
 
- private:
   const Wall& w_;
   const FieldFlight::Model& m_;
   double scale_;

@@ -303,7 +303,7 @@ bool short_step(const Real& s, const Real& rate, const V& v, const V& w, const R
 /// and |v| below V + A h, and |f''| ≤ 2 (V + A h)²/ρ + A.  Nearer the centre than R/2 (where f'' is unbounded and ρ' is 0/0 at
 /// the centre), the Lipschitz bound |f'| ≤ |v| ≤ V + A τ instead.
 template <class Real, class V>
-scan::Sample<Real, V> radial_gap_sample(bool focusing, const Real& R, const Real& rho, const Real& rho_rate,
+[[gnu::always_inline]] inline scan::Sample<Real, V> radial_gap_sample(bool focusing, const Real& R, const Real& rho, const Real& rho_rate,
                                         const Real& speed, const Real& A, const V& x) {
   using std::sqrt;
   const Real sign = focusing ? 1 : -1, f = sign * (rho - R);
