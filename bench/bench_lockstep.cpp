@@ -43,9 +43,10 @@ std::vector<Flight> record(const dynamics::Table& table, const PeriodicDriveFlig
   for (int k = 0; k <= 1000; ++k) opt.record_times.push_back(k);
   std::vector<double> energies(opt.record_times.size());
   const auto initial = dynamics::microcanonical(table, flight, 1.0, 1);
+  const dynamics::RecordMarks<PeriodicDriveFlight> marks(flight, opt.record_times);
   std::vector<Flight> flights;
   for (std::size_t particle = 0; flights.size() < count; ++particle) {
-    dynamics::Trajectory<PeriodicDriveFlight> run(table, flight, initial(particle), opt, energies.data());
+    dynamics::Trajectory<PeriodicDriveFlight> run(table, flight, initial(particle), opt, marks, energies.data());
     while (flights.size() < count && !run.done()) {
       flights.push_back({run.state(), run.horizon()});
       if (!run.step()) break;

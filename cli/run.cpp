@@ -16,6 +16,7 @@
 
 #include <omp.h>
 
+#include <charconv>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -223,23 +224,36 @@ nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coeff
 
 /// η(E, t) of the analytic Fokker–Planck solution at every record time (a column E, then one
 /// column per record time), on a grid uniform in E^{1/4} up to the largest simulated energy:
-/// dense at low energy, where early distributions are narrow.
-std::string fokker_planck_table(const Scene& scene, const analysis::Coefficients& c, const EnsembleResult& r) {
+/// dense at low energy, where early distributions are narrow.  Rows are computed on `threads`
+/// threads; numbers are written as fmt's {:.9g} writes them, by std::to_chars (a fifth of the
+/// cost, the same characters).
+std::string fokker_planck_table(const Scene& scene, const analysis::Coefficients& c, const EnsembleResult& r,
+                                int threads) {
   double hi = scene.energy;
   for (double e : r.energies)
     if (std::isfinite(e)) hi = std::max(hi, e);
+  constexpr int points = 3000;
+  const double top = std::pow(1.05 * hi, 0.25);
+  std::vector<std::string> rows(points);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+  for (int i = 1; i <= points; ++i) {
+    std::string& row = rows[i - 1];
+    auto write = [&row](double x) {
+      char text[32];
+      row.append(text, std::to_chars(text, text + sizeof text, x, std::chars_format::general, 9).ptr);
+    };
+    const double u = top * i / points, E = u * u * u * u;
+    write(E);
+    for (double t : scene.record_times) {
+      row += ',';
+      write(t > 0 ? analysis::fokker_planck_eta(E, c.C * t, scene.energy, c.dimension) : 0.0);
+    }
+    row += '\n';
+  }
   std::string csv = "E";
   for (double t : scene.record_times) csv += fmt::format(",eta(t={})", t);
   csv += "\n";
-  constexpr int points = 3000;
-  const double top = std::pow(1.05 * hi, 0.25);
-  for (int i = 1; i <= points; ++i) {
-    const double u = top * i / points, E = u * u * u * u;
-    csv += fmt::format("{:.9g}", E);
-    for (double t : scene.record_times)
-      csv += fmt::format(",{:.9g}", t > 0 ? analysis::fokker_planck_eta(E, c.C * t, scene.energy, c.dimension) : 0.0);
-    csv += "\n";
-  }
+  for (const auto& row : rows) csv += row;
   return csv;
 }
 
@@ -345,7 +359,8 @@ void write_run_files(const OutputDir& out, const RunOutcome& run, const RunArgs&
     out.write_npy("energies.npy", std::vector<float>(run.result.energies.begin(), run.result.energies.end()), rows, cols);
   out.write_json("summary.json", run.summary);
   if (run.prediction && run.prediction->closed_form)
-    out.write_text("fokker-planck.csv", fokker_planck_table(scene, *run.prediction, run.result));
+    out.write_text("fokker-planck.csv", fokker_planck_table(scene, *run.prediction, run.result,
+                                                             args.threads > 0 ? args.threads : omp_get_max_threads()));
 }
 
 void report(const RunOutcome& run) {

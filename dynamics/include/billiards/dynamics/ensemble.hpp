@@ -83,6 +83,28 @@ double energy_of(const Flight& flight, const typename Flight::State& s, double m
     return kinetic_energy(s, mass);
 }
 
+/// Does the flight record its energy from a mark computed once per record time for every
+/// particle (`record_mark(t)`, `kinetic_energy_at_mark`)?  The periodic drive's mark is the sine
+/// of its phase at t: a record then costs no sine or cosine of the particle's own.
+template <class Flight>
+concept marks_records = requires(const Flight& f, const typename Flight::State& s, double t) {
+  f.kinetic_energy_at_mark(s, f.record_mark(t), 1.0);
+};
+
+/// What a run computes once per record time for every particle's record there (nothing for a
+/// flight without marks).
+template <class Flight>
+struct RecordMarks {
+  RecordMarks(const Flight&, const std::vector<double>&) {}
+};
+template <marks_records Flight>
+struct RecordMarks<Flight> {
+  std::vector<typename Flight::Scalar> at;
+  RecordMarks(const Flight& flight, const std::vector<double>& times) {
+    for (double t : times) at.push_back(flight.record_mark(t));
+  }
+};
+
 /// One particle's run, a collision at a time: records its energy at each record time into
 /// `energies` (NaN after an escape).  Flights are searched up to the last record time only.
 /// Each flight runs on its own clock (collision.hpp's restart_clock): the state's t is the time
@@ -93,8 +115,8 @@ template <class Flight, class TableT = dynamics::Table>
 class Trajectory {
  public:
   Trajectory(const TableT& table, const Flight& flight, typename Flight::State s, const RunOptions& opt,
-             double* energies)
-      : table_(&table), flight_(&flight), opt_(&opt), s_(s), energies_(energies),
+             const RecordMarks<Flight>& marks, double* energies)
+      : table_(&table), flight_(&flight), opt_(&opt), marks_(&marks), s_(s), energies_(energies),
         v2_(s.v.squaredNorm()), t_final_(opt.record_times.empty() ? s.t : opt.record_times.back()) {
     restart_clock(flight, s_, clock_);
   }
@@ -130,11 +152,8 @@ class Trajectory {
     const double end = horizon();
     const bool looked_ahead = !hit.found() && end < clock_.until(t_final_);
     const double t_next = hit.found() ? hit.t : looked_ahead ? end : never;
-    for (; k_ < n && clock_.until(times[k_]) <= t_next; ++k_) {
-      const auto r = flight_->advance(s_, clock_.until(times[k_]));
-      if (!table_->contains(r.x)) return escape();
-      energies_[k_] = energy_of(*flight_, r, opt_->mass);
-    }
+    for (; k_ < n && clock_.until(times[k_]) <= t_next; ++k_)
+      if (!record(clock_.until(times[k_]))) return escape();
     if (k_ == n) return false;
     if (looked_ahead) {  // on to the look-ahead, to search again from there
       s_ = flight_->advance(s_, end);
@@ -155,6 +174,19 @@ class Trajectory {
 
  private:
   bool next_collision() { return !done() && advance_to(collision(*table_, *flight_, s_, horizon())); }
+  /// Records the energy at the next record time, t on the flight's clock; false when the
+  /// particle is not inside the table there.
+  bool record(double t) {
+    if constexpr (marks_records<Flight>) {
+      if (!inside_at(t)) return false;
+      energies_[k_] = flight_->kinetic_energy_at_mark(s_, marks_->at[k_], opt_->mass);
+    } else {
+      const auto r = flight_->advance(s_, t);
+      if (!table_->contains(r.x)) return false;
+      energies_[k_] = energy_of(*flight_, r, opt_->mass);
+    }
+    return true;
+  }
   [[gnu::flatten]] bool flat_step() { return next_collision(); }
   /// Did the search that found the hit certify the flight's midpoint inside already?
   template <class HitT>
@@ -180,6 +212,7 @@ class Trajectory {
   const TableT* table_;
   const Flight* flight_;
   const RunOptions* opt_;
+  const RecordMarks<Flight>* marks_;
   typename Flight::State s_;
   double* energies_;
   double v2_, t_final_;
@@ -193,7 +226,8 @@ class Trajectory {
 template <class Flight, class TableT>
 ParticleLog simulate(const TableT& table, const Flight& flight, typename Flight::State s,
                      const RunOptions& opt, double* energies) {
-  Trajectory<Flight, TableT> run(table, flight, s, opt, energies);
+  const RecordMarks<Flight> marks(flight, opt.record_times);
+  Trajectory<Flight, TableT> run(table, flight, s, opt, marks, energies);
   while (run.step()) {
   }
   return run.log();
@@ -231,6 +265,7 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
   using Run = Trajectory<PeriodicDriveFlight, Table>;
   constexpr int lanes = lockstep::lanes;
   const std::size_t m = opt.record_times.size();
+  const RecordMarks<PeriodicDriveFlight> marks(flight, opt.record_times);
   std::atomic<std::size_t> next{first}, done{0};
   StopCheck stop(opt);
   FirstError error;
@@ -241,7 +276,7 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
     auto refill = [&](int i) {
       runs[i].reset();
       const std::size_t k = next++;
-      if (k < last) runs[i].emplace(table, flight, initial(k), opt, &out.energies[k * m]), index[i] = k;
+      if (k < last) runs[i].emplace(table, flight, initial(k), opt, marks, &out.energies[k * m]), index[i] = k;
     };
     // A particle done: its log kept, the next one in its lane.
     auto finish = [&](int i) {
@@ -299,6 +334,7 @@ void run_particles(const TableT& table, const Flight& flight, const Initial& ini
       return run_in_lockstep(lockstep_table, table, flight, initial, opt, first, last, threads, out, progress);
   }
   const std::size_t m = opt.record_times.size();
+  const RecordMarks<Flight> marks(flight, opt.record_times);
   constexpr std::size_t together = interleaved_particles<Flight>;
   const std::size_t batches = (last - first + together - 1) / together;
   std::atomic<std::size_t> done{0};
@@ -309,7 +345,7 @@ void run_particles(const TableT& table, const Flight& flight, const Initial& ini
     const std::size_t lo = first + std::size_t(b) * together;
     const std::size_t hi = std::min(last, lo + together);
     boost::container::static_vector<Trajectory<Flight, TableT>, together> runs;
-    for (std::size_t i = lo; i < hi; ++i) runs.emplace_back(table, flight, initial(i), opt, &out.energies[i * m]);
+    for (std::size_t i = lo; i < hi; ++i) runs.emplace_back(table, flight, initial(i), opt, marks, &out.energies[i * m]);
     std::size_t active = runs.size();
     while (active > 0 && !stop.stopped()) {
       active = 0;

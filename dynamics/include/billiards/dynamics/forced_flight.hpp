@@ -216,6 +216,19 @@ struct BasicPeriodicDriveFlight {
   /// x(t) = x_s + [v_s − (F/mω) sin θ_s](t − t_s) − (F/mω²)[cos θ(t) − cos θ_s];
   /// sin θ(t) and cos θ(t) from `near` when it is known (a sample of a root search).
   State advance(const State& s, const Real& t, const PhaseSample<Real>& near = {}) const;
+  /// What an ensemble computes once per record time t for every particle's record there
+  /// (ensemble.hpp's RecordMarks): sin θ(t), the phase ω t + φ0 reduced in two doubles.
+  Real record_mark(const Real& t) const {
+    BasicState<Real, D> at;
+    at.t = t;
+    return start(at).sin_phase;
+  }
+  /// ½ m v² at the time whose mark is sin θ: Appendix B's velocity v_s + (F/mω)(sin θ − sin θ_s)
+  /// needs neither the position nor a sine of the particle's own.
+  Real kinetic_energy_at_mark(const State& s, const Real& sin_theta, const Real& mass) const {
+    const VecN<Real, D> v = s.v + drive_amplitudes(accel, omega).second * Real(sin_theta - s.sin_phase);
+    return Real(0.5) * mass * v.squaredNorm();
+  }
   DrivenScan<BasicPeriodicDriveFlight> scan_from(const State& s) const requires(D == 2) { return {{*this, s}}; }
   /// The oscillation segment guide ± F/(mω²) that holds the position at time t of the flight
   /// from s (no sine or cosine: the ensemble's every-flight check looks it up first).
