@@ -62,8 +62,10 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
                 std::is_same_v<Kind<wall_kind3::triangle>, TriangleWall> &&
                 std::is_same_v<Kind<wall_kind3::sphere>, SphereWall>);
 
-  /// Keeps a reference to `region` (for point location), which must outlive the table.
+  /// Keeps a reference to `region` (for point location), which must outlive the table: a
+  /// temporary region does not compile.
   explicit BasicTable(const geometry3::Region3& region);
+  BasicTable(geometry3::Region3&&) = delete;
 
   /// The first wall the flight (FreeFlight3, PeriodicDriveFlight3, MagneticFlight3 or
   /// MagneticDriveFlight3) from `s` leaves the region through, before `t_end`, with the
