@@ -225,8 +225,8 @@ nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coeff
 /// η(E, t) of the analytic Fokker–Planck solution at every record time (a column E, then one
 /// column per record time), on a grid uniform in E^{1/4} up to the largest simulated energy:
 /// dense at low energy, where early distributions are narrow.  Rows are computed on `threads`
-/// threads; numbers are written as fmt's {:.9g} writes them, by std::to_chars (a fifth of the
-/// cost, the same characters).
+/// threads; numbers are written as fmt's {:.9g} writes them, by std::to_chars (the same
+/// characters, about half the instructions).
 std::string fokker_planck_table(const Scene& scene, const analysis::Coefficients& c, const EnsembleResult& r,
                                 int threads) {
   double hi = scene.energy;
