@@ -81,12 +81,12 @@ int main(int argc, char** argv) {
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 5;
   const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/clover.yaml");
   const dynamics::Table table(shape.region);
-  std::vector<dynamics::lockstep::Target> targets;
+  std::vector<dynamics::simd::Target> targets;
   if (const char* env = std::getenv("BILLIARDS_SIMD"); env && std::string(env) != "auto")
-    targets.push_back({env, 0, dynamics::lockstep::kernel_for(env), false});
+    targets.push_back({env, dynamics::simd::target_for(env), false});
   else
-    for (const auto& t : dynamics::lockstep::runnable_targets())
-      if (!(t.bit & dynamics::lockstep::generic_target)) targets.push_back(t);
+    for (const auto& t : dynamics::simd::runnable_targets())
+      if (!(t.bit & dynamics::simd::generic)) targets.push_back(t);
   fmt::print("driven clover, {} batches of {} flights per frequency, best of {}; ns per collision (M/s)\n", batches,
              lanes, repeats);
   fmt::print("{:>8} {:>16}", "omega", "scalar");
@@ -117,7 +117,7 @@ int main(int argc, char** argv) {
     const double ns_scalar = best_ns(flights.size(), repeats, all(search_scalar));
     fmt::print("{:>6}pi {:>8.1f} ({:>5.2f})", w, ns_scalar, 1e3 / ns_scalar);
     for (const auto& target : targets) {
-      const dynamics::LockstepTable lockstep(table, flight, target.kernel);
+      const dynamics::LockstepTable lockstep(table, flight, dynamics::lockstep::kernel_of(target.bit));
       auto search_lockstep = [&](const DrivenState* const* states, const double* t_end) {
         lockstep.collisions(states, t_end, lanes, lock);
         for (int i = 0; i < lanes; ++i) sum += lock[i].t;

@@ -8,7 +8,7 @@
 #include "interrupt.hpp"
 #include "ranks.hpp"
 
-#include "billiards/dynamics/lockstep.hpp"
+#include "billiards/dynamics/simd.hpp"
 #include "billiards/geometry/input_error.hpp"
 #include "billiards/version.hpp"
 
@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
     speaks = ranks.root();
     if (!speaks && !std::freopen("/dev/null", "w", stdout)) return 1;
     billiards::cli::require_known_command(app, argc, argv);
-    billiards::dynamics::lockstep::chosen_kernel();  // (BILLIARDS_SIMD checked before any output)
+    billiards::dynamics::simd::chosen_target();  // (BILLIARDS_SIMD checked before any output)
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help
     return speaks ? app.exit(e) : 0;

@@ -24,7 +24,19 @@ using geometry::Vec2;
 
 namespace {
 
-std::vector<dynamics::lockstep::Target> kernels() { return dynamics::lockstep::runnable_targets(); }
+/// The lock-step kernel of each SIMD target this processor runs.
+struct TargetKernel {
+  const char* name;
+  std::int64_t bit;
+  dynamics::lockstep::Kernel kernel;
+  bool automatic;
+};
+std::vector<TargetKernel> kernels() {
+  std::vector<TargetKernel> all;
+  for (const auto& t : dynamics::simd::runnable_targets())
+    all.push_back({t.name, t.bit, dynamics::lockstep::kernel_of(t.bit), t.automatic});
+  return all;
+}
 
 dynamics::Table table_of(const std::string& shape) {
   return dynamics::Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + shape + ".yaml").region);
@@ -192,28 +204,33 @@ TEST_CASE("lock step: ensembles equal simulate particle by particle, for every t
 }
 
 TEST_CASE("lock step: BILLIARDS_SIMD's names choose the targets, and refuse what they cannot") {
-  namespace ls = dynamics::lockstep;
-  const auto runnable = ls::runnable_targets();
+  namespace simd = dynamics::simd;
+  const auto runnable = simd::runnable_targets();
   REQUIRE_FALSE(runnable.empty());
   CHECK(std::string(runnable.back().name) == "generic");  // (everywhere, and the slowest)
 #if defined(__x86_64__)
   // Every x86-64 target is compiled in, whatever the build machine has.
   std::string compiled;
-  for (const auto& t : ls::compiled_targets()) compiled += std::string(t.name) + " ";
+  for (const auto& t : simd::compiled_targets()) compiled += std::string(t.name) + " ";
   CHECK(compiled == "avx512 avx2 sse4 generic ");
 #endif
-  for (const auto& t : runnable) CHECK(ls::kernel_for(t.name) == t.kernel);
-  CHECK(ls::kernel_for("scalar") == nullptr);
+  for (const auto& t : simd::compiled_targets()) {  // (each kernel file compiles every target)
+    CHECK(dynamics::lockstep::kernel_of(t.bit) != nullptr);
+    CHECK(dynamics::free_lanes::kernel_of(t.bit) != nullptr);
+  }
+  for (const auto& t : runnable) CHECK(simd::target_for(t.name) == t.bit);
+  CHECK(simd::target_for("scalar") == simd::scalar);
+  CHECK(dynamics::lockstep::kernel_of(simd::scalar) == nullptr);
   // auto: the best target faster than the scalar search, else the scalar search.
   const auto best = std::find_if(runnable.begin(), runnable.end(), [](const auto& t) { return t.automatic; });
-  CHECK(ls::kernel_for("auto") == (best == runnable.end() ? nullptr : best->kernel));
+  CHECK(simd::target_for("auto") == (best == runnable.end() ? simd::scalar : best->bit));
   if (std::any_of(runnable.begin(), runnable.end(), [](const auto& t) { return std::string(t.name) == "avx2"; }))
     CHECK(best != runnable.end());
-  CHECK_THROWS_AS(ls::kernel_for("avx1024"), InputError);  // (bad input: exit status 2)
-  CHECK_THROWS_WITH(ls::kernel_for("avx1024"), Catch::Contains("BILLIARDS_SIMD: 'avx1024': expected scalar, "));
-  for (const auto& t : ls::compiled_targets())
-    if (std::none_of(runnable.begin(), runnable.end(), [&](const auto& r) { return r.kernel == t.kernel; }))
-      CHECK_THROWS_WITH(ls::kernel_for(t.name), Catch::Contains("this processor cannot run it"));
+  CHECK_THROWS_AS(simd::target_for("avx1024"), InputError);  // (bad input: exit status 2)
+  CHECK_THROWS_WITH(simd::target_for("avx1024"), Catch::Contains("BILLIARDS_SIMD: 'avx1024': expected scalar, "));
+  for (const auto& t : simd::compiled_targets())
+    if (std::none_of(runnable.begin(), runnable.end(), [&](const auto& r) { return r.bit == t.bit; }))
+      CHECK_THROWS_WITH(simd::target_for(t.name), Catch::Contains("this processor cannot run it"));
 }
 
 TEST_CASE("lock step: an exception thrown for one particle is rethrown after the run, not a termination") {

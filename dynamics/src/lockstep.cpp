@@ -1,55 +1,16 @@
 #include "billiards/dynamics/lockstep.hpp"
-#include "billiards/geometry/input_error.hpp"
-
-#include <hwy/targets.h>
-
-static_assert(billiards::dynamics::lockstep::generic_target == (HWY_EMU128 | HWY_SCALAR));
 
 #include <algorithm>
-#include <cstdlib>
-#include <stdexcept>
-#include <string>
 #include <tuple>
 
 namespace billiards::dynamics {
 
 namespace lockstep {
 
-std::vector<Target> runnable_targets() {
-  std::vector<Target> runnable;
-  const std::int64_t supported = hwy::SupportedTargets();
-  for (const Target& t : compiled_targets())
-    if (supported & t.bit) runnable.push_back(t);
-  return runnable;
-}
-
-Kernel kernel_for(std::string_view choice) {
-  if (choice == "scalar") return nullptr;
-  const std::vector<Target> runnable = runnable_targets();
-  if (choice == "auto") {
-    for (const Target& t : runnable)
-      if (t.automatic) return t.kernel;
-    return nullptr;
-  }
-  std::string names, runs;
-  for (const Target& t : compiled_targets()) {
-    names += std::string(t.name) + ", ";
-    if (t.name != choice) continue;
-    for (const Target& r : runnable) {
-      if (r.name == choice) return r.kernel;
-      runs += std::string(runs.empty() ? "" : ", ") + r.name;
-    }
-    throw InputError("BILLIARDS_SIMD", 0, "'" + std::string(choice) + "': this processor cannot run it (it runs " + runs +
-                                              ", scalar or auto)");
-  }
-  throw InputError("BILLIARDS_SIMD", 0, "'" + std::string(choice) + "': expected scalar, " + names + "or auto");
-}
+Kernel kernel_for(std::string_view choice) { return kernel_of(simd::target_for(choice)); }
 
 Kernel chosen_kernel() {
-  static const Kernel k = [] {
-    const char* env = std::getenv("BILLIARDS_SIMD");
-    return kernel_for(env ? env : "auto");
-  }();
+  static const Kernel k = kernel_of(simd::chosen_target());
   return k;
 }
 

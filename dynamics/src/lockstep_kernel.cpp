@@ -14,14 +14,7 @@
 // compiler from fusing them either), builtins and this file's own functions (no std:: function
 // and no Eigen, whose inline functions would be compiled for one target and linked for all).
 
-// Targets left out: sizeless vectors (SVE, RVV) cannot be members of a Pack; NEON's vectors
-// have constructors that GCC 12 will not inline into a Pack's implicit one (a build error), and
-// leave `Pack{}` unset where the lanes need zeros; SSSE3 (no 64-bit comparison) and AVX3_DL
-// (nothing more for doubles than AVX-512) would only lengthen the build.
-#ifndef HWY_DISABLED_TARGETS
-#define HWY_DISABLED_TARGETS \
-  (HWY_SSSE3 | HWY_AVX3_DL | HWY_NEON | HWY_SVE | HWY_SVE2 | HWY_SVE_256 | HWY_SVE2_128 | HWY_RVV)
-#endif
+#include "simd_targets.hpp"  // (first: the targets compiled)
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "lockstep_kernel.cpp"
 #include <hwy/foreach_target.h>  // (this file, once per target)
@@ -778,24 +771,7 @@ HWY_AFTER_NAMESPACE();
 #if HWY_ONCE
 namespace billiards::dynamics::lockstep {
 
-// The targets compiled above (nullptr where not), best first.  (HWY_EXPORT's table is indexed
-// by Highway's own choice; the variable BILLIARDS_SIMD needs each target by name.)
-const std::vector<Target>& compiled_targets() {
-  static const std::vector<Target> targets = [] {
-    const Target all[] = {{"avx512", HWY_AVX3, HWY_CHOOSE_AVX3(first_hits), true},
-                          {"avx2", HWY_AVX2, HWY_CHOOSE_AVX2(first_hits), true},
-                          {"sse4", HWY_SSE4, HWY_CHOOSE_SSE4(first_hits), false},
-#if HWY_TARGETS & (HWY_EMU128 | HWY_SCALAR)
-                          {"generic", generic_target, HWY_CHOOSE_FALLBACK(first_hits), false}
-#endif
-    };
-    std::vector<Target> compiled;
-    for (const Target& t : all)
-      if (t.kernel) compiled.push_back(t);
-    return compiled;
-  }();
-  return targets;
-}
+Kernel kernel_of(std::int64_t target) { BILLIARDS_KERNEL_OF(target, first_hits) }
 
 }  // namespace billiards::dynamics::lockstep
 #endif

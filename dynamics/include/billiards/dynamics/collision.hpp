@@ -54,25 +54,29 @@ inline void try_wall(const BasicTable<typename Flight::Scalar>& table, const Fli
   try_wall(table, WallByWall<Flight>{flight, s}, wall, best);
 }
 
-/// Tries every wall of the table, kind by kind.  (The best hit of a kind is kept in locals, so
-/// that the loop does not reload it from memory after each wall.)
+/// Tries the walls of one kind (the best hit so far kept in locals, so that the loop does not
+/// reload it from memory after each wall).
+template <class Real, class Scan, class Wall>
+inline void try_walls(const std::vector<Wall>& walls, int kind, const Scan& scan, BasicHit<Real>& best) {
+  const Wall* w = walls.data();
+  const int n = int(walls.size());
+  Real best_t = best.t;
+  int best_i = -1;
+  for (int i = 0; i < n; ++i) {
+    const auto t = scan.exit_time(w[i], best_t);
+    if (t < best_t) {
+      best_t = t;
+      best_i = i;
+    }
+  }
+  best.t = best_t;
+  if (best_i >= 0) best.wall = {kind, best_i};
+}
+
+/// Tries every wall of the table, kind by kind.
 template <class Real, class Scan>
 inline void try_every_wall(const BasicTable<Real>& table, const Scan& scan, BasicHit<Real>& best) {
-  table.for_each_kind([&](const auto& walls, int kind) {
-    const auto* w = walls.data();
-    const int n = int(walls.size());
-    Real best_t = best.t;
-    int best_i = -1;
-    for (int i = 0; i < n; ++i) {
-      const auto t = scan.exit_time(w[i], best_t);
-      if (t < best_t) {
-        best_t = t;
-        best_i = i;
-      }
-    }
-    best.t = best_t;
-    if (best_i >= 0) best.wall = {kind, best_i};
-  });
+  table.for_each_kind([&](const auto& walls, int kind) { try_walls(walls, kind, scan, best); });
 }
 
 /// Straight flights through the grid (Amanatides–Woo traversal): walls are tested cell by

@@ -5,6 +5,7 @@
 
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/first_error.hpp"
+#include "billiards/dynamics/free_lockstep.hpp"
 #include "billiards/dynamics/lockstep.hpp"
 #include "billiards/dynamics/random.hpp"
 #include "billiards/geometry/input_error.hpp"
@@ -256,18 +257,19 @@ struct EnsembleResult {
 template <class Flight>
 inline constexpr std::size_t interleaved_particles = is_straight<Flight> ? 4 : 1;
 
-/// Runs particles [first, last) of a driven ensemble in a table that LockstepTable can search:
-/// each thread keeps lockstep::lanes particles in flight and finds their collisions together,
-/// taking the next particle as soon as one is done.  Each particle's arithmetic is that of
-/// `simulate`, whatever its neighbours in the lanes.
-template <class Initial>
-void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, const PeriodicDriveFlight& flight,
+/// Runs particles [first, last) of an ensemble in a table that a lock-step table can search
+/// (LockstepTable for driven flights, FreeLockstepTable for straight ones): each thread keeps
+/// `lanes` particles in flight and finds their collisions together, taking the next particle as
+/// soon as one is done.  Each particle's arithmetic is that of `simulate`, whatever its
+/// neighbours in the lanes.
+template <class Flight, class LockstepT, class Initial>
+void run_in_lockstep(const LockstepT& lockstep_table, const Table& table, const Flight& flight,
                      const Initial& initial, const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                      EnsembleResult& out, const std::function<void(std::size_t)>& progress) {
-  using Run = Trajectory<PeriodicDriveFlight, Table>;
-  constexpr int lanes = lockstep::lanes;
+  using Run = Trajectory<Flight, Table>;
+  constexpr int lanes = LockstepT::lanes;
   const std::size_t m = opt.record_times.size();
-  const RecordMarks<PeriodicDriveFlight> marks(flight, opt.record_times);
+  const RecordMarks<Flight> marks(flight, opt.record_times);
   std::atomic<std::size_t> next{first}, done{0};
   StopCheck stop(opt);
   FirstError error;
@@ -288,10 +290,10 @@ void run_in_lockstep(const LockstepTable& lockstep_table, const Table& table, co
       refill(i);
     };
     for (int i = 0; i < lanes; ++i) refill(i);
-    const DrivenState* states[lanes];
+    const typename Flight::State* states[lanes];
     double horizons[lanes];
     int lane_of[lanes];
-    FlightHit<PeriodicDriveFlight> hits[lanes];
+    FlightHit<Flight> hits[lanes];
     for (;;) {
       int n = 0;
       for (int i = 0; i < lanes; ++i) {
@@ -330,8 +332,10 @@ template <class Flight, class TableT, class Initial>
 void run_particles(const TableT& table, const Flight& flight, const Initial& initial,
                    const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                    EnsembleResult& out, const std::function<void(std::size_t)>& progress = {}) {
-  if constexpr (std::is_same_v<Flight, PeriodicDriveFlight> && std::is_same_v<TableT, Table>) {
-    const LockstepTable lockstep_table(table, flight);
+  if constexpr (std::is_same_v<TableT, Table> &&
+                (std::is_same_v<Flight, PeriodicDriveFlight> || std::is_same_v<Flight, FreeFlight>)) {
+    using LockstepT = std::conditional_t<std::is_same_v<Flight, FreeFlight>, FreeLockstepTable, LockstepTable>;
+    const LockstepT lockstep_table(table, flight);
     if (lockstep_table.usable())
       return run_in_lockstep(lockstep_table, table, flight, initial, opt, first, last, threads, out, progress);
   }

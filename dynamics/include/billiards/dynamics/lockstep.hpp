@@ -20,37 +20,20 @@
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/lockstep_lanes.hpp"
+#include "billiards/dynamics/simd.hpp"
 
 #include <cstdint>
 #include <string_view>
-#include <vector>
 
 namespace billiards::dynamics {
 
 namespace lockstep {
 
-/// Highway's targets without SIMD (EMU128, or SCALAR where the compiler cannot build it): the
-/// lanes in plain C++, for the tests on any processor; `generic` in BILLIARDS_SIMD.
-inline constexpr std::int64_t generic_target = std::int64_t(1) << 61 | std::int64_t(1) << 62;
-/// A SIMD target the kernel is compiled for: its name (as BILLIARDS_SIMD spells it), Highway's
-/// bit for it, the kernel, and whether `auto` may choose it: only targets faster than the
-/// scalar search (AVX-512 and AVX2; SSE4's two lanes a register run at half its rate:
-/// BENCHMARKS.md).
-struct Target {
-  const char* name;
-  std::int64_t bit;
-  Kernel kernel;
-  bool automatic;
-};
-/// The targets compiled in, best first.
-const std::vector<Target>& compiled_targets();
-/// Those this processor can run, best first.
-std::vector<Target> runnable_targets();
-/// The kernel for a value of BILLIARDS_SIMD: `scalar`, none (the scalar search); a target's
-/// name, its kernel; `auto`, the best `automatic` target this processor runs, else none.
-/// Throws std::runtime_error for any other name or a target this processor cannot run.
+/// The kernel compiled for a SIMD target (simd.hpp); nullptr for simd::scalar.
+Kernel kernel_of(std::int64_t target);
+/// The kernel for a value of BILLIARDS_SIMD (simd::target_for).
 Kernel kernel_for(std::string_view choice);
-/// The kernel that ensembles use: kernel_for(BILLIARDS_SIMD), `auto` where it is unset.
+/// The kernel that ensembles use: that of simd::chosen_target().
 Kernel chosen_kernel();
 
 }  // namespace lockstep
@@ -59,6 +42,7 @@ Kernel chosen_kernel();
 /// lockstep::max_arcs of them), ready for `collisions`.
 class LockstepTable {
  public:
+  static constexpr int lanes = lockstep::lanes;
   /// Not `usable` when the table cannot be searched in lock step, or the kernel is none.
   LockstepTable(const Table& table, const PeriodicDriveFlight& flight,
                 lockstep::Kernel kernel = lockstep::chosen_kernel());

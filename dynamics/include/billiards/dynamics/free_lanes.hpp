@@ -1,0 +1,50 @@
+// The lock-step search of straight flights (free_lockstep.hpp): its plain data, what the kernel
+// (src/free_lanes_kernel.cpp) reads and writes, and nothing it could share with the rest of the
+// program (see lockstep_lanes.hpp for why).
+#pragma once
+
+#include <cstdint>
+
+namespace billiards::dynamics::free_lanes {
+
+/// Flights searched together, one per lane (two AVX-512 vectors, four AVX2 or eight SSE4:
+/// independent chains that hide each other's latency), and the most walls of a kind.
+inline constexpr int lanes = 16;
+inline constexpr int max_walls = 24;
+
+/// A segment wall (BasicSegmentWall's fields).
+struct Segment {
+  double ax, ay, nx, ny, dir_x, dir_y, slack, span_tol;
+};
+/// A circular arc wall (BasicArcWall's fields); `half`: at most half a circle.
+struct Arc {
+  double cx, cy, r, r2, near, span_tol, from_x, from_y, to_x, to_y;
+  bool focusing, full, half;
+};
+/// The segments and arcs of a table.
+struct Walls {
+  Segment segments[max_walls];
+  Arc arcs[max_walls];
+  int segment_count = 0, arc_count = 0;
+};
+
+/// The flights, lane by lane: the state (position, velocity, time, |v|²) and horizon.
+struct alignas(64) Rays {
+  double x[lanes], y[lanes], vx[lanes], vy[lanes], t[lanes], vv[lanes], t_end[lanes];
+};
+
+/// What the search found, lane by lane: the first wall's time (t_end: none), kind
+/// (wall_kind::segment or arc; −1: none) and index; or `handed_back`: a circle discriminant the
+/// filter could not sign, for the scalar search to decide exactly.
+struct alignas(64) Hits {
+  double t[lanes];
+  std::int64_t kind[lanes], index[lanes];
+  std::int64_t handed_back[lanes];  // −1 (true) or 0
+};
+
+/// The kernel, as compiled for one SIMD target.
+using Kernel = void (*)(const Walls& walls, const Rays& rays, Hits& hits);
+/// The kernel compiled for a SIMD target (simd.hpp); nullptr for simd::scalar.
+Kernel kernel_of(std::int64_t target);
+
+}  // namespace billiards::dynamics::free_lanes

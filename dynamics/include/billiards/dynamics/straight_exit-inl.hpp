@@ -1,0 +1,151 @@
+// The exit time of a straight flight through a segment or a circular arc, written once over a
+// number type and included into a namespace: by straight_exit.hpp into billiards::dynamics
+// (the scalar search in double, long double or MPFR), and by free_lanes_kernel.cpp into each
+// SIMD target's namespace (one wall per lane).  A `Lanes` traits class `L` supplies the number
+// type and its truth values; the algorithms see nothing else:
+//   L::Num, L::Truth; L::splat(x), L::never(); L::select(m, a, b), L::select_truth(m, a, b),
+//   L::splat_truth(a); l.none(m); l.choose(m, f, g): f() where m, else g() (a branch on a
+//   bool; lanes of mixed truths compute both); l.both, l.either, l.negate (each also taking
+//   a bool for its first truth: a wall's, the same in every lane);
+//   L::sqrt, L::abs, L::max (std::max's order), L::neg; and
+//   l.discriminant_positive_filtered(needed, D, bound, ray, arc): is the circle discriminant
+//   D positive, where needed (bound(): D's forward error bound in double)?
+// Every branch of the search is a selection or a `choose`, so that a vector computes each lane
+// exactly as a double would: the same operations in the same order, each rounded once (no fused
+// multiply-add).  This file includes nothing and opens no namespace; it may use nothing but its
+// traits (a SIMD target's code may call no inline function shared with the rest of the program).
+// (No include guard: included once into each namespace.)  The functions are inlined always:
+// the scalar search's loops over walls (try_walls, grid_collision) run about 10% slower in a
+// grid table when GCC calls the arc's out of line.
+
+// The operands, split into numbers.  `F` is the number type, or a reference to it where the
+// scalar search reads the numbers in place from the state and the wall.
+
+/// The start of a straight flight: position, velocity, time, |v|².
+template <class F, class Num = std::remove_cv_t<std::remove_reference_t<F>>>
+struct RayLanes {
+  F x, y, vx, vy, t;
+  Num vv;
+};
+
+/// A circular arc wall (BasicArcWall, walls.hpp).  Its truths are bool where every lane holds
+/// the same wall, so that the algorithms branch on them.
+template <class F, class Truth>
+struct ArcLanes {
+  F cx, cy, r, r2, near, span_tol, from_x, from_y, to_x, to_y;
+  Truth focusing, full, half;  // half: at most half a circle
+};
+
+/// A segment wall (BasicSegmentWall).
+template <class F>
+struct SegmentLanes {
+  F ax, ay, nx, ny, dir_x, dir_y, slack, span_tol;
+};
+
+/// Is the point (px, py) on the arc's circle within its span, ends included (and extended by
+/// the span tolerance)?  BasicArcWall::within_span.
+template <class L, class Arc>
+[[gnu::always_inline]] inline typename L::Truth arc_within_span(const L& l, const Arc& w,
+                                  const typename L::Num& px, const typename L::Num& py) {
+  using Num = typename L::Num;
+  const Num ux = px - w.cx, uy = py - w.cy, tol = w.span_tol;
+  return l.choose(w.full, [&] { return L::splat_truth(true); }, [&] {
+    return l.choose(w.half, [&] {  // up to half a circle: within both ends' half-planes
+      const Num neg_tol = L::neg(tol);
+      return l.both(w.from_x * uy - w.from_y * ux >= neg_tol, ux * w.to_y - uy * w.to_x >= neg_tol);
+    }, [&] {  // more: not strictly within the complementary arc (< π)
+      return l.negate(l.both(w.to_x * uy - w.to_y * ux > tol, ux * w.from_y - uy * w.from_x > tol));
+    });
+  });
+}
+
+/// The time the straight flight from s leaves the region through the arc w (before t_end),
+/// else `never`.  BasicFreeFlight::exit_time (free_flight.hpp) for every number type.
+template <class L, class FR, class FW, class WT>
+[[gnu::always_inline]] inline typename L::Num straight_exit_time(L& l, const RayLanes<FR>& s, const ArcLanes<FW, WT>& w,
+                                   const typename L::Num& t_end) {
+  using Num = typename L::Num;
+  const Num zero = L::splat(0), no = L::never();
+  // |f + v τ|² − r² = a τ² + 2 b τ + c with f = x − centre.
+  const Num fx = s.x - w.cx, fy = s.y - w.cy;
+  const Num& a = s.vv;
+  const Num b = fx * s.vx + fy * s.vy;
+  const Num c = (fx * fx + fy * fy) - w.r2;
+  // c ≈ 2 r × (distance beyond the circle): "within rounding of the circle" in c units.
+  const Num neg_near = L::neg(w.near);
+  const auto moving_in = b < zero, beyond = c > w.near;
+  // Region inside the circle (focusing): leave through the larger root.  On the circle moving
+  // out (b ≥ 0, c ≥ 0): now, if on it to rounding; else ahead.
+  // Region outside the circle (dispersing): enter through the smaller root, only approaching.
+  // Inside the circle by rounding only (−near ≤ c ≤ 0): reflect now.  Deeper inside, the
+  // particle is in a part of the region the circle overlaps elsewhere, and only leaves the
+  // circle ahead.
+  const auto leaving_now = l.both(l.negate(moving_in), c >= zero);
+  const auto now = [&] { return L::select(l.both(w.focusing, leaving_now), L::select(c <= w.near, s.t, no), no); };
+  const auto ahead = l.select_truth(w.focusing, l.negate(leaving_now), l.both(moving_in, c >= neg_near));
+  if (l.none(ahead)) return now();
+  // Starting away from the circle (focusing: outside it, in a non-convex region; dispersing:
+  // outside it), a miss or a graze (a touch, not a crossing) is no exit: the sign of the
+  // discriminant in its perpendicular form, the accurate one there.
+  const Num fxv = fx * s.vy - fy * s.vx, r2a = w.r2 * a;
+  const Num D_line = r2a - fxv * fxv;  // r²|v|² − (f × v)²
+  const auto needs_sign = l.select_truth(w.focusing, beyond, c > zero);
+  const auto crossing = l.discriminant_positive_filtered(l.both(ahead, needs_sign), D_line, [&] {
+    // D's forward error bound in double: the rounding of f, r², the products and the difference
+    // (doubled from the bound measured).
+    const Num spread = L::abs(fx * s.vy) + L::abs(fy * s.vx);
+    return Num(L::splat(16 * std::numeric_limits<double>::epsilon()) * (r2a + spread * spread));
+  }, s, w);
+  const auto exits = l.both(ahead, l.either(l.negate(needs_sign), crossing));
+  if (l.none(exits)) return now();
+  const Num dt = l.choose(w.focusing, [&] {
+    // On the circle to rounding (|c| ≤ near; just reflected off it): the chord of a particle
+    // exactly on it, −2b/a, which returns to the particle's own radius (the hit point is then
+    // projected onto the circle).  Solving for the circle itself from a start inside it by
+    // rounding δ would lengthen the chord by δ/(v·n) and tilt the velocity toward the normal
+    // at the next bounce, always the same way: a drift of the angle of incidence.  Only at
+    // grazing angles below the start's own rounding (b² < a|c|) is the chord set by that
+    // rounding, a|c| in either direction, so that the particle leaves its start.  Inside:
+    // b² − a c with c < 0 is a sum of two non-negative terms.  Either way D ≥ b², so the far
+    // root is never before the end of the chord.  (The perpendicular form cancels at grazing
+    // incidence: below an angle of 1e-8 it gives half that chord or less, the point where the
+    // particle moves along the tangent, and the particle would collide again at once, forever.)
+    const Num D = l.choose(beyond, [&] { return L::max(zero, D_line); }, [&] {
+      return L::select(c < neg_near, Num(b * b - a * c), L::max(Num(b * b), Num(a * L::abs(c))));
+    });
+    const Num root = L::sqrt(D);
+    // (root − b)/a, or where b > 0 the same root without cancelling, −c/(b + root): one
+    // division of selected operands.
+    const auto small_b = b <= zero;
+    return Num(L::select(small_b, Num(root - b), L::neg(c)) / L::select(small_b, a, Num(b + root)));
+  }, [&] {
+    return l.choose(c <= zero, [&] { return zero; }, [&] { return Num(c / (L::sqrt(L::max(zero, D_line)) - b)); });
+  });
+  const Num t = s.t + dt;
+  const auto hit = l.both(exits, l.both(l.negate(t > t_end), arc_within_span(l, w, s.x + s.vx * dt, s.y + s.vy * dt)));
+  return l.choose(hit, [&] { return t; }, now);
+}
+
+/// The time the straight flight from s leaves through the segment w (before t_end), else
+/// `never`: moving outward across the line, within the span where it crosses.  Beyond the line
+/// by rounding only (a particle just reflected at a joint): now.  Far beyond it: the particle
+/// is elsewhere in a non-convex region, moving away.
+template <class L, class FR, class FW>
+[[gnu::always_inline]] inline typename L::Num straight_exit_time(L& l, const RayLanes<FR>& s, const SegmentLanes<FW>& w, const typename L::Num& t_end) {
+  using Num = typename L::Num;
+  const Num zero = L::splat(0), no = L::never();
+  const Num rate = w.nx * s.vx + w.ny * s.vy;  // d/dt of the distance beyond the wall's line
+  const auto outward = rate > zero;
+  if (l.none(outward)) return no;
+  const Num beyond = w.nx * (s.x - w.ax) + w.ny * (s.y - w.ay);
+  const auto exits = l.both(outward, l.negate(beyond > w.slack));
+  if (l.none(exits)) return no;
+  const Num dt = l.choose(beyond >= zero, [&] { return zero; }, [&] { return Num(L::neg(beyond) / rate); });
+  const Num t = s.t + dt;
+  const auto in_time = l.both(exits, l.negate(t > t_end));
+  if (l.none(in_time)) return no;
+  const Num along = (s.x + s.vx * dt - w.ax) * w.dir_x + (s.y + s.vy * dt - w.ay) * w.dir_y;
+  const auto within = l.both(along >= L::neg(w.span_tol), along <= L::splat(1) + w.span_tol);
+  return L::select(l.both(in_time, within), t, no);
+}
+

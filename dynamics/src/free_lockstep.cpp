@@ -1,0 +1,60 @@
+#include "billiards/dynamics/free_lockstep.hpp"
+
+#include <tuple>
+
+namespace billiards::dynamics {
+
+free_lanes::Kernel free_lanes::chosen_kernel() {
+  static const Kernel k = kernel_of(simd::chosen_target());
+  return k;
+}
+
+FreeLockstepTable::FreeLockstepTable(const Table& table, const FreeFlight& flight, free_lanes::Kernel kernel)
+    : table_(&table), flight_(&flight), kernel_(kernel) {
+  const auto& segments = table.segments();
+  const auto& arcs = table.arcs();
+  constexpr std::size_t most = free_lanes::max_walls;
+  usable_ = kernel && !table.grid() && segments.size() <= most && arcs.size() <= most;
+  if (!usable_) return;
+  walls_.segment_count = int(segments.size());
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const auto& w = segments[i];
+    walls_.segments[i] = {w.a.x(), w.a.y(), w.normal.x(), w.normal.y(), w.dir.x(), w.dir.y(), w.slack, w.span_tol};
+  }
+  walls_.arc_count = int(arcs.size());
+  for (std::size_t i = 0; i < arcs.size(); ++i) {
+    const auto& w = arcs[i];
+    walls_.arcs[i] = {w.center.x(), w.center.y(), w.radius, w.radius2, w.near, w.span_tol, w.from.x(), w.from.y(),
+                      w.to.x(),     w.to.y(),     w.focusing, w.full, w.ccw_extent <= geometry::pi};
+  }
+}
+
+void FreeLockstepTable::collisions(const State* const* states, const double* t_end, int n,
+                                   FlightHit<FreeFlight>* hits) const {
+  free_lanes::Rays in;
+  for (int i = 0; i < free_lanes::lanes; ++i) {
+    const State& s = *states[i < n ? i : 0];  // (lanes beyond n: a copy of the first)
+    in.x[i] = s.x.x(), in.y[i] = s.x.y(), in.vx[i] = s.v.x(), in.vy[i] = s.v.y();
+    in.t[i] = s.t, in.vv[i] = s.v.squaredNorm(), in.t_end[i] = t_end[i < n ? i : 0];
+  }
+  free_lanes::Hits out;
+  kernel_(walls_, in, out);
+  for (int i = 0; i < n; ++i) {
+    const State& s = *states[i];
+    auto& hit = hits[i];
+    if (out.handed_back[i]) {
+      hit = collision(*table_, *flight_, s, t_end[i]);
+      continue;
+    }
+    // As `collision` makes the hit: the elliptic arcs after the lanes' segments and arcs.
+    hit.t = out.t[i];
+    hit.wall = out.kind[i] < 0 ? WallId{} : WallId{int(out.kind[i]), int(out.index[i])};
+    hit.midpoint_inside = false;
+    detail::try_walls(table_->elliptic_arcs(), wall_kind::elliptic_arc, detail::WallByWall<FreeFlight>{*flight_, s}, hit);
+    if (!hit.found()) continue;
+    hit.state = flight_->advance(s, hit.t);
+    std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x, hit.state.v);
+  }
+}
+
+}  // namespace billiards::dynamics
