@@ -16,16 +16,17 @@ FreeLockstepTable::FreeLockstepTable(const Table& table, const FreeFlight& fligh
   constexpr std::size_t most = free_lanes::max_walls;
   usable_ = kernel && !table.grid() && segments.size() <= most && arcs.size() <= most;
   if (!usable_) return;
+  // The numbers the scalar search reads of each wall (free_flight.hpp's views).
   walls_.segment_count = int(segments.size());
   for (std::size_t i = 0; i < segments.size(); ++i) {
-    const auto& w = segments[i];
-    walls_.segments[i] = {w.a.x(), w.a.y(), w.normal.x(), w.normal.y(), w.dir.x(), w.dir.y(), w.slack, w.span_tol};
+    const auto g = segment_lanes(segments[i]);
+    walls_.segments[i] = {g.ax, g.ay, g.nx, g.ny, g.dir_x, g.dir_y, g.slack, g.span_tol};
   }
   walls_.arc_count = int(arcs.size());
   for (std::size_t i = 0; i < arcs.size(); ++i) {
-    const auto& w = arcs[i];
-    walls_.arcs[i] = {w.center.x(), w.center.y(), w.radius, w.radius2, w.near, w.span_tol, w.from.x(), w.from.y(),
-                      w.to.x(),     w.to.y(),     w.focusing, w.full, w.ccw_extent <= geometry::pi};
+    const auto a = arc_lanes(arcs[i]);
+    walls_.arcs[i] = {a.cx,     a.cy,   a.r,    a.r2,   a.near,     a.span_tol, a.from_x,
+                      a.from_y, a.to_x, a.to_y, a.focusing, a.full, a.half};
   }
 }
 

@@ -7,8 +7,6 @@ namespace billiards::dynamics {
 
 namespace lockstep {
 
-Kernel kernel_for(std::string_view choice) { return kernel_of(simd::target_for(choice)); }
-
 Kernel chosen_kernel() {
   static const Kernel k = kernel_of(simd::chosen_target());
   return k;

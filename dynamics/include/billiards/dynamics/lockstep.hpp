@@ -23,7 +23,6 @@
 #include "billiards/dynamics/simd.hpp"
 
 #include <cstdint>
-#include <string_view>
 
 namespace billiards::dynamics {
 
@@ -31,8 +30,6 @@ namespace lockstep {
 
 /// The kernel compiled for a SIMD target (simd.hpp); nullptr for simd::scalar.
 Kernel kernel_of(std::int64_t target);
-/// The kernel for a value of BILLIARDS_SIMD (simd::target_for).
-Kernel kernel_for(std::string_view choice);
 /// The kernel that ensembles use: that of simd::chosen_target().
 Kernel chosen_kernel();
 

@@ -1,12 +1,13 @@
 // The exit time of a straight flight through a segment or a circular arc, written once over a
 // number type and included into a namespace: by straight_exit.hpp into billiards::dynamics
 // (the scalar search in double, long double or MPFR), and by free_lanes_kernel.cpp into each
-// SIMD target's namespace (one wall per lane).  A `Lanes` traits class `L` supplies the number
+// SIMD target's namespace (one particle per lane).  A `Lanes` traits class `L` supplies the number
 // type and its truth values; the algorithms see nothing else:
 //   L::Num, L::Truth; L::splat(x), L::never(); L::select(m, a, b), L::select_truth(m, a, b),
 //   L::splat_truth(a); l.none(m); l.choose(m, f, g): f() where m, else g() (a branch on a
-//   bool; lanes of mixed truths compute both); l.both, l.either, l.negate (each also taking
-//   a bool for its first truth: a wall's, the same in every lane);
+//   bool; lanes of mixed truths compute both); l.both, l.either, l.negate (`choose`,
+//   `select_truth` and `both` also take a bool for their first truth: a wall's, the same in
+//   every lane);
 //   L::sqrt, L::abs, L::max (std::max's order), L::neg; and
 //   l.discriminant_positive_filtered(needed, D, bound, ray, arc): is the circle discriminant
 //   D positive, where needed (bound(): D's forward error bound in double)?

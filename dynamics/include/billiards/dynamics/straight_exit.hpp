@@ -25,7 +25,7 @@ struct ScalarLanes {
   static bool select_truth(bool m, bool a, bool b) { return m ? a : b; }
   static bool splat_truth(bool a) { return a; }
   static bool none(bool m) { return !m; }
-  /// f() where m, else g(): a branch (the lanes' traits compute only the side some lane takes).
+  /// f() where m, else g(): a branch.
   template <class F, class G>
   static auto choose(bool m, F f, G g) {
     return m ? f() : g();
