@@ -9,25 +9,31 @@ free_lanes::Kernel free_lanes::chosen_kernel() {
   return k;
 }
 
-FreeLockstepTable::FreeLockstepTable(const Table& table, const FreeFlight& flight, free_lanes::Kernel kernel)
-    : table_(&table), flight_(&flight), kernel_(kernel) {
+bool free_lanes::fits(const Table& table) {
+  return table.segments().size() <= std::size_t(max_walls) && table.arcs().size() <= std::size_t(max_walls);
+}
+
+free_lanes::Walls free_lanes::walls_of(const Table& table) {
   const auto& segments = table.segments();
   const auto& arcs = table.arcs();
-  constexpr std::size_t most = free_lanes::max_walls;
-  usable_ = kernel && !table.grid() && segments.size() <= most && arcs.size() <= most;
-  if (!usable_) return;
-  // The numbers the scalar search reads of each wall (free_flight.hpp's views).
-  walls_.segment_count = int(segments.size());
+  Walls walls;
+  walls.segment_count = int(segments.size());
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const auto g = segment_lanes(segments[i]);
-    walls_.segments[i] = {g.ax, g.ay, g.nx, g.ny, g.dir_x, g.dir_y, g.slack, g.span_tol};
+    walls.segments[i] = {g.ax, g.ay, g.nx, g.ny, g.dir_x, g.dir_y, g.slack, g.span_tol};
   }
-  walls_.arc_count = int(arcs.size());
+  walls.arc_count = int(arcs.size());
   for (std::size_t i = 0; i < arcs.size(); ++i) {
     const auto a = arc_lanes(arcs[i]);
-    walls_.arcs[i] = {a.cx,     a.cy,   a.r,    a.r2,   a.near,     a.span_tol, a.from_x,
-                      a.from_y, a.to_x, a.to_y, a.focusing, a.full, a.half};
+    walls.arcs[i] = {a.cx,     a.cy,   a.r,    a.r2,   a.near,     a.span_tol, a.from_x,
+                     a.from_y, a.to_x, a.to_y, a.focusing, a.full, a.half};
   }
+  return walls;
+}
+
+FreeLockstepTable::FreeLockstepTable(const Table& table, const FreeFlight& flight, free_lanes::Kernel kernel)
+    : table_(&table), flight_(&flight), kernel_(kernel), usable_(kernel && !table.grid() && free_lanes::fits(table)) {
+  if (usable_) walls_ = free_lanes::walls_of(table);
 }
 
 void FreeLockstepTable::collisions(const State* const* states, const double* t_end, int n,

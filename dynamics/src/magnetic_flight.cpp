@@ -14,6 +14,7 @@
 #include <cmath>
 #include <complex>
 #include <tuple>
+#include <type_traits>
 #include <stdexcept>
 #include <utility>
 
@@ -21,124 +22,36 @@ namespace billiards::dynamics {
 
 namespace {
 
-/// Position and velocity after turning by φ = 2ψ, τ after the start, from sin ψ and cos ψ:
-/// sin φ = 2 sin ψ cos ψ, 1 − cos φ = 2 sin²ψ (accurate at small φ); in 3-D with the drift.
-template <class Real, int D>
-std::pair<VecN<Real, D>, VecN<Real, D>> turned(const Gyration<Real, D>& g, const Real& sn, const Real& cs,
-                                               const Real& tau) {
-  const Real sin_phi = 2 * sn * cs, one_minus_cos = 2 * sn * sn, cos_phi = (cs - sn) * (cs + sn);
-  VecN<Real, D> x = g.s.x + (sin_phi * g.inv_k) * g.v_perp + (one_minus_cos * g.inv_k) * g.w0;
-  VecN<Real, D> v = cos_phi * g.v_perp + sin_phi * g.w0;
-  if constexpr (D == 3) x += tau * g.drift, v += g.drift;
+/// Position and velocity of a helix after turning by φ = 2ψ, τ after the start, from sin ψ
+/// and cos ψ, with the drift (3-D; turned_by in 2-D).
+std::pair<Vec3, Vec3> turned(const Gyration<double, 3>& g, double sn, double cs, double tau) {
+  const double sin_phi = 2 * sn * cs, one_minus_cos = 2 * sn * sn, cos_phi = (cs - sn) * (cs + sn);
+  const Vec3 x = g.s.x + (sin_phi * g.inv_k) * g.v_perp + (one_minus_cos * g.inv_k) * g.w0 + tau * g.drift;
+  const Vec3 v = cos_phi * g.v_perp + sin_phi * g.w0 + g.drift;
   return {x, v};
 }
 
-/// v turned by a quarter turn in the sense of the gyration (sign of Ω > 0: clockwise).
-template <class Real>
-Vec2T<Real> towards_center(const Vec2T<Real>& v, const Real& omega_c) {
-  return omega_c > 0 ? Vec2T<Real>(v.y(), -v.x()) : Vec2T<Real>(-v.y(), v.x());
-}
+/// Walls whose crossings are closed forms (magnetic_exit-inl.hpp); the others are scanned
+/// (Gyration::exit_time's template).
+template <class Real, class W>
+inline constexpr bool has_closed_form = std::is_same_v<W, BasicSegmentWall<Real>> || std::is_same_v<W, BasicArcWall<Real>>;
 
-/// The time at which the orbit has turned by twice the half angle of u (u ≠ 0, u.y ≥ 0).
-template <class Real>
-Real time_at(const Gyration<Real>& g, const Vec2T<Real>& u) {
-  using std::atan2;
-  return g.s.t + 2 * Real(atan2(u.y(), u.x())) / g.k;
-}
-
-/// Is the half angle of u earlier than that of u_best (both ≠ 0 in [0, π))?
-template <class Real>
-bool earlier(const Vec2T<Real>& u, const Vec2T<Real>& u_best) {
-  return u.x() * u_best.y() - u.y() * u_best.x() > 0;
-}
-
-/// The exit time from the half angle u of the outward crossing (u = 0: none), or +∞: past
-/// t_end, or outside the wall's span (the one crossing of each turn: the orbit never leaves
-/// through this wall).
+/// The exit time through one wall with a closed form, or +∞: past t_end, or outside the wall's
+/// span (the one crossing of each turn: the orbit never leaves through this wall).
 template <class Real, class Wall>
-Real exit_at(const Gyration<Real>& g, const Wall& w, const Vec2T<Real>& u, const Real& t_end) {
-  // (The span first: it rules out most crossings without an arctangent.)
-  if ((u.x() == 0 && u.y() == 0) || !w.within_span(g.position_at_half_angle(u))) return never;
-  const Real t = time_at(g, u);
+Real closed_form_exit(const Gyration<Real>& g, const Wall& w, const Real& t_end) {
+  if (!g.may_reach(w, t_end)) return never;
+  EarliestCrossing<Real, bool> only{{Real(0), Real(0)}, false};
+  ScalarLanes<Real> l;
+  // (The span before the arctangent: it rules out most crossings.)
+  const auto view = [&] {
+    if constexpr (std::is_same_v<Wall, BasicSegmentWall<Real>>) return segment_lanes(w);
+    else return arc_lanes(w);
+  }();
+  if (!keep_earlier_crossing(l, g.lanes(), view, reach_lanes(w), only)) return never;
+  const Real t = crossing_time(l, g.lanes(), only.u, g.s.t);
   return t > t_end ? Real(never) : t;
 }
-
-/// The first outward zero of F0 + B1 sin φ + B2 (1 − cos φ) over one turn φ ∈ [0, 2π), as the
-/// half angle ψ = φ/2 ∈ [0, π) in the form u ∝ (cos ψ, sin ψ) (u = 0: none).  `near` is the
-/// rounding of F0: within it beyond the wall (0 ≤ F0 ≤ near) and moving out, the crossing is
-/// now (u = (1, 0)), as for every flight (flight.hpp).  A touch (a double root) is no crossing.
-/// `D` is B1² − F0 (F0 + 2 B2), the discriminant, computed by the caller in its accurate form.
-template <class Real>
-[[gnu::always_inline]] inline Vec2T<Real> outward_half_angle(const Real& F0, const Real& B1, const Real& B2, const Real& D, const Real& near) {
-  using V = Vec2T<Real>;
-  using std::sqrt;
-  // Beyond the wall by rounding and moving out (or along it and curving out): now.
-  if (F0 >= 0 && F0 <= near && (B1 > 0 || (B1 == 0 && B2 > 0))) return V(1, 0);
-  if (!(D > 0)) return V::Zero();  // a miss or a touch
-  // With c = cos ψ, s = sin ψ: F = F0 c² + 2 B1 s c + (F0 + 2 B2) s², zero where
-  // tan ψ = (−B1 ± √D)/(F0 + 2 B2); F increases through the "+" root (its derivative in tan ψ
-  // is 2√D there).  That root as a direction, in whichever of its two forms does not cancel:
-  // from a wall just bounced off (F0 ≈ 0, B1 < 0) it is the far end of the chord, not the
-  // start point.
-  const Real root = sqrt(D);
-  const Real x = B1 <= 0 ? Real(F0 + 2 * B2) : Real(-B1 - root), y = B1 <= 0 ? Real(root - B1) : F0;
-  const bool turn = y < 0 || (y == 0 && x < 0);  // ψ ∈ [0, π): one turn from now
-  return turn ? V(-x, -y) : V(x, y);
-}
-
-/// The outward half angle (as outward_half_angle) through a line, or a plane parallel to the
-/// field, at the signed distance `dist` beyond it, with B1 = n·v⊥ and B2 = n·w0 (n its normal):
-/// the gap is k × the distance, F0 = k dist.
-template <class Real>
-[[gnu::always_inline]] inline Vec2T<Real> line_half_angle(const Real& k, const Real& dist, const Real& B1, const Real& B2, const Real& speed,
-                            const Real& slack) {
-  using std::abs;
-  const Real F0 = k * dist, near = k * slack;
-  // D = B1² − F0 (F0 + 2 B2): as it stands on the wall; elsewhere as |v⊥|² − (k × distance of
-  // the centre beyond the line)², a product free of cancellation at a graze.
-  const Real mean = F0 + B2;
-  const Real disc = abs(F0) <= near ? Real(B1 * B1 - F0 * (F0 + 2 * B2)) : Real((speed - mean) * (speed + mean));
-  return outward_half_angle(F0, B1, B2, disc, near);
-}
-
-/// The outward crossing of the wall's line in the coming turn, as a half-angle direction
-/// u ∝ (cos ψ, sin ψ), ψ ∈ [0, π), whether or not it lies within the wall's span; u = 0: none,
-/// or the orbit cannot reach the wall at all.
-template <class Real>
-[[gnu::always_inline]] inline Vec2T<Real> crossing(const Gyration<Real>& g, const BasicSegmentWall<Real>& w) {
-  if (!g.may_reach(w, Real(never))) return Vec2T<Real>::Zero();
-  // F = k × (distance beyond the line): F0 now, B1 = n·v0, B2 = n·w0; B1² + B2² = |v0|².
-  return line_half_angle(g.k, Real(w.normal.dot(g.s.x - w.a)), Real(w.normal.dot(g.s.v)), Real(w.normal.dot(g.w0)),
-                         g.speed, w.slack);
-}
-
-/// The same through the wall's circle.
-template <class Real>
-[[gnu::always_inline]] inline Vec2T<Real> crossing(const Gyration<Real>& g, const BasicArcWall<Real>& w) {
-  using std::abs;
-  if (!g.may_reach(w, Real(never))) return Vec2T<Real>::Zero();
-  // F = ±(k/2)(|x − c|² − r²), + for a focusing arc: beyond the wall is outside its circle.
-  const Real sign = w.focusing ? 1 : -1, k = g.k;
-  const Vec2T<Real> p = g.s.x - w.center;
-  const Real F0 = sign * k / 2 * (p.squaredNorm() - w.radius2), B1 = sign * p.dot(g.s.v),
-             B2 = sign * (p.dot(g.w0) + g.speed * g.radius);
-  const Real near = k * w.radius * w.slack;
-  Real disc;
-  if (abs(F0) <= near) {
-    disc = B1 * B1 - F0 * (F0 + 2 * B2);
-  } else {
-    // (k/2)² ((r + ρ)² − d²)(d² − (r − ρ)²), d the distance between the centres: each factor
-    // a sum of three lengths, zero at a graze.
-    const Real d = (g.center - w.center).norm(), r = w.radius, rho = g.radius;
-    disc = k * k / 4 * ((r - d + rho) * (r + d - rho)) * ((d + rho - r) * (d + rho + r));
-  }
-  return outward_half_angle(F0, B1, B2, disc, near);
-}
-
-/// Has the orbit a closed-form crossing with walls of kind W (`crossing`)?  The others are
-/// scanned (Gyration::exit_time's template).
-template <class Real, class W>
-concept has_closed_form = requires(const Gyration<Real>& g, const W& w) { crossing(g, w); };
 
 /// The certified scan's sample of a conic wall (an ellipse, or a circle: L = I/r): its gap
 /// f = ±m(|u|² − 1)/2 (u = L(x − c), m the smaller semi-axis: to first order the distance beyond
@@ -176,10 +89,16 @@ Gyration<Real, D>::Gyration(const BasicMagneticFlight<Real, D>& flight, const Ba
   if constexpr (D == 2) {
     k = abs(flight.omega_c);
     inv_k = 1 / k;
+    const auto g = gyration_of(ScalarLanes<Real>{}, state.x.x(), state.x.y(), state.v.x(), state.v.y(), k, inv_k,
+                               flight.omega_c > 0, Real(16 * scan::eps<Real>));
     v_perp = state.v;
-    w0 = towards_center(state.v, flight.omega_c);
+    w0 = V(g.w0x, g.w0y);
     drift = V::Zero();
     axis = V::Zero();
+    speed = g.speed;
+    center = V(g.cx, g.cy);
+    radius = g.radius;
+    rounding = g.rounding;
   } else {
     // (Projected with Ω itself, not the rounded unit vector b, and w0 scaled to |v⊥|: a fixed
     // rounding of |b| would otherwise bias |v(τ)|² by the same sign in every flight.)
@@ -190,14 +109,12 @@ Gyration<Real, D>::Gyration(const BasicMagneticFlight<Real, D>& flight, const Ba
     drift = (state.v.dot(flight.omega_c) / k2) * flight.omega_c;
     v_perp = state.v - drift;
     w0 = v_perp.cross(flight.omega_c);
-  }
-  speed = sqrt(v_perp.squaredNorm());
-  if constexpr (D == 3) {
+    speed = sqrt(v_perp.squaredNorm());
     if (speed > 0) w0 *= speed / w0.norm();
+    center = state.x + w0 * inv_k;
+    radius = speed * inv_k;
+    rounding = 16 * scan::eps<Real> * (center.template lpNorm<Eigen::Infinity>() + radius);
   }
-  center = state.x + w0 * inv_k;
-  radius = speed * inv_k;
-  rounding = 16 * scan::eps<Real> * (center.template lpNorm<Eigen::Infinity>() + radius);
 }
 
 template <class Real, int D>
@@ -205,7 +122,12 @@ auto Gyration<Real, D>::at(const Real& tau) const -> std::pair<V, V> {
   using std::cos;
   using std::sin;
   const Real half = k * tau / 2;
-  return turned(*this, Real(sin(half)), Real(cos(half)), tau);
+  if constexpr (D == 2) {
+    const auto p = turned_by<ScalarLanes<Real>>(lanes(), Real(sin(half)), Real(cos(half)));
+    return {V(p.x, p.y), V(p.vx, p.vy)};
+  } else {
+    return turned(*this, Real(sin(half)), Real(cos(half)), tau);
+  }
 }
 
 template <class Real, int D>
@@ -217,26 +139,47 @@ template <class Real, int D>
 auto Gyration<Real, D>::first_hit(const BasicTable<Real>& table, const Real& t_end) const
     -> FlightHit<BasicMagneticFlight<Real>>
   requires(D == 2) {
-  using std::sqrt;
+  // The closed forms: the earliest crossing within its wall's span (ties: the first wall).
+  ScalarLanes<Real> l;
+  const auto g = lanes();
+  EarliestCrossing<Real, bool> earliest{{Real(0), Real(0)}, false};
+  WallId wall;
+  const auto& segments = table.segments();
+  for (int i = 0, n = int(segments.size()); i < n; ++i)
+    if (keep_earlier_crossing(l, g, segment_lanes(segments[i]), reach_lanes(segments[i]), earliest))
+      wall = {wall_kind::segment, i};
+  const auto& arcs = table.arcs();
+  for (int i = 0, n = int(arcs.size()); i < n; ++i)
+    if (keep_earlier_crossing(l, g, arc_lanes(arcs[i]), reach_lanes(arcs[i]), earliest)) wall = {wall_kind::arc, i};
+  return hit_from(table, earliest, wall, t_end);
+}
+
+template <class Real, int D>
+auto Gyration<Real, D>::hit_from(const BasicTable<Real>& table, const EarliestCrossing<Real, bool>& earliest,
+                                 const WallId& wall, const Real& t_end) const -> FlightHit<BasicMagneticFlight<Real>>
+  requires(D == 2) {
   FlightHit<BasicMagneticFlight<Real>> hit;
   hit.t = t_end;
-  // The closed forms: the earliest crossing within its wall's span (ties: the first wall).
-  Vec2T<Real> best = Vec2T<Real>::Zero();
-  bool has_best = false;
-  table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
-    if constexpr (has_closed_form<Real, W>) {
-      for (int i = 0, n = int(walls.size()); i < n; ++i) {
-        const Vec2T<Real> u = crossing(*this, walls[i]);
-        if ((u.x() == 0 && u.y() == 0) || (has_best && !earlier(u, best))) continue;
-        if (walls[i].within_span(position_at_half_angle(u))) best = u, has_best = true, hit.wall = {kind, i};
-      }
-    }
-  });
-  if (has_best) {
-    if (const Real t = time_at(*this, best); t < t_end) hit.t = t;
-    else hit.wall = {};
+  if (earliest.found) {
+    if (const Real t = crossing_time(ScalarLanes<Real>{}, lanes(), earliest.u, s.t); t < t_end) hit.t = t, hit.wall = wall;
   }
-  // The scans of the other kinds' walls, each up to the best hit so far.
+  const bool scanned = scan_walls_without_closed_form(table, hit);
+  if (!hit.found()) return hit;
+  hit.state = s;
+  hit.state.t = hit.t;
+  if (!scanned) {
+    const auto p = turned_by<ScalarLanes<Real>>(lanes(), earliest.u);
+    hit.state.x = V(p.x, p.y), hit.state.v = V(p.vx, p.vy);
+  } else {
+    std::tie(hit.state.x, hit.state.v) = at(hit.t - s.t);
+  }
+  return hit;
+}
+
+template <class Real, int D>
+bool Gyration<Real, D>::scan_walls_without_closed_form(const BasicTable<Real>& table,
+                                                       FlightHit<BasicMagneticFlight<Real>>& hit) const
+  requires(D == 2) {
   bool scanned = false;
   table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
     if constexpr (!has_closed_form<Real, W>) {
@@ -244,29 +187,19 @@ auto Gyration<Real, D>::first_hit(const BasicTable<Real>& table, const Real& t_e
         if (const Real t = exit_time(walls[i], hit.t); t < hit.t) hit.t = t, hit.wall = {kind, i}, scanned = true;
     }
   });
-  if (!hit.found()) return hit;
-  hit.state = s;
-  hit.state.t = hit.t;
-  const Real tau = hit.t - s.t;
-  if (!scanned) {
-    const Real norm = sqrt(best.squaredNorm());
-    std::tie(hit.state.x, hit.state.v) = turned(*this, Real(best.y() / norm), Real(best.x() / norm), tau);
-  } else {
-    std::tie(hit.state.x, hit.state.v) = at(tau);
-  }
-  return hit;
+  return scanned;
 }
 
 template <class Real, int D>
 Real Gyration<Real, D>::exit_time(const BasicSegmentWall<Real>& w, const Real& t_end) const
   requires(D == 2) {
-  return may_reach(w, t_end) ? exit_at(*this, w, crossing(*this, w), t_end) : Real(never);
+  return closed_form_exit(*this, w, t_end);
 }
 
 template <class Real, int D>
 Real Gyration<Real, D>::exit_time(const BasicArcWall<Real>& w, const Real& t_end) const
   requires(D == 2) {
-  return may_reach(w, t_end) ? exit_at(*this, w, crossing(*this, w), t_end) : Real(never);
+  return closed_form_exit(*this, w, t_end);
 }
 
 // ---- Helices (3-D) ---------------------------------------------------------------------------
@@ -288,9 +221,9 @@ double Gyration<Real, D>::plane_exit(const Vec3& n, const Vec3& a, double slack,
   // Along the field (n ⟂ b) and without a span: the circle's closed form (the 2-D segment's),
   // one crossing per turn whatever the drift along the plane.
   if (spanless && n.dot(axis) == 0) {
-    const Vec2 u = line_half_angle(k, F0, n.dot(v_perp), n.dot(w0), speed, slack);
-    if (u.x() == 0 && u.y() == 0) return never;
-    const double t = s.t + 2 * std::atan2(u.y(), u.x()) * inv_k;
+    const auto u = line_half_angle(ScalarLanes<double>{}, k, F0, n.dot(v_perp), n.dot(w0), speed, slack);
+    if (u.x == 0 && u.y == 0) return never;
+    const double t = s.t + 2 * std::atan2(u.y, u.x) * inv_k;
     return t > t_end ? never : t;
   }
   // Otherwise the scan: |f''| = |n·(v⊥ × Ω)| ≤ k |v⊥| |n⊥|, and the gap stays within r_c |n⊥| of
@@ -592,6 +525,8 @@ template double Gyration<double, 2>::period() const;
 template double Gyration<double, 2>::exit_time(const BasicSegmentWall<double>&, const double&) const;
 template double Gyration<double, 2>::exit_time(const BasicArcWall<double>&, const double&) const;
 template FlightHit<BasicMagneticFlight<double>> Gyration<double, 2>::first_hit(const BasicTable<double>&, const double&) const;
+template bool Gyration<double, 2>::scan_walls_without_closed_form(const BasicTable<double>&,
+                                                                  FlightHit<BasicMagneticFlight<double>>&) const;
 template BasicState<double> BasicMagneticFlight<double>::advance(const State&, const double&) const;
 template double BasicMagneticFlight<double>::period() const;
 template Gyration<long double, 2>::Gyration(const BasicMagneticFlight<long double>&, const BasicState<long double>&);

@@ -7,6 +7,7 @@
 #include "billiards/dynamics/first_error.hpp"
 #include "billiards/dynamics/free_lockstep.hpp"
 #include "billiards/dynamics/lockstep.hpp"
+#include "billiards/dynamics/magnetic_lockstep.hpp"
 #include "billiards/dynamics/random.hpp"
 #include "billiards/geometry/input_error.hpp"
 
@@ -257,8 +258,15 @@ struct EnsembleResult {
 template <class Flight>
 inline constexpr std::size_t interleaved_particles = is_straight<Flight> ? 4 : 1;
 
+/// The lock-step table that searches a flight's collisions in a 2-D table (void: none).
+template <class Flight>
+using LockstepTableOf = std::conditional_t<
+    std::is_same_v<Flight, PeriodicDriveFlight>, LockstepTable,
+    std::conditional_t<std::is_same_v<Flight, FreeFlight>, FreeLockstepTable,
+                       std::conditional_t<std::is_same_v<Flight, MagneticFlight>, MagneticLockstepTable, void>>>;
+
 /// Runs particles [first, last) of an ensemble in a table that a lock-step table can search
-/// (LockstepTable for driven flights, FreeLockstepTable for straight ones): each thread keeps
+/// (LockstepTableOf the flight): each thread keeps
 /// `lanes` particles in flight and finds their collisions together, taking the next particle as
 /// soon as one is done.  Each particle's arithmetic is that of `simulate`, whatever its
 /// neighbours in the lanes.
@@ -332,10 +340,8 @@ template <class Flight, class TableT, class Initial>
 void run_particles(const TableT& table, const Flight& flight, const Initial& initial,
                    const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                    EnsembleResult& out, const std::function<void(std::size_t)>& progress = {}) {
-  if constexpr (std::is_same_v<TableT, Table> &&
-                (std::is_same_v<Flight, PeriodicDriveFlight> || std::is_same_v<Flight, FreeFlight>)) {
-    using LockstepT = std::conditional_t<std::is_same_v<Flight, FreeFlight>, FreeLockstepTable, LockstepTable>;
-    const LockstepT lockstep_table(table, flight);
+  if constexpr (std::is_same_v<TableT, Table> && !std::is_void_v<LockstepTableOf<Flight>>) {
+    const LockstepTableOf<Flight> lockstep_table(table, flight);
     if (lockstep_table.usable())
       return run_in_lockstep(lockstep_table, table, flight, initial, opt, first, last, threads, out, progress);
   }

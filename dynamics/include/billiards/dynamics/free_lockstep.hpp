@@ -17,6 +17,10 @@ namespace billiards::dynamics {
 namespace free_lanes {
 /// The kernel that ensembles use: that of simd::chosen_target().
 Kernel chosen_kernel();
+/// Are the table's segments and arcs few enough for the kernels' arrays (max_walls of each)?
+bool fits(const Table& table);
+/// The table's segments and arcs (`fits`) as the kernels read them: free_flight.hpp's views.
+Walls walls_of(const Table& table);
 }  // namespace free_lanes
 
 /// A table whose straight flights can be searched in lock step: without a grid (at most

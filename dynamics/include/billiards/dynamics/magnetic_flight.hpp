@@ -24,6 +24,7 @@
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/flight.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics/magnetic_exit.hpp"
 #include "billiards/dynamics/table3.hpp"
 
 #include <type_traits>
@@ -37,6 +38,13 @@ struct BasicMagneticFlight;
 /// 3-D the vector.
 template <class Real, int D>
 using Cyclotron = std::conditional_t<D == 2, Real, VecN<Real, 3>>;
+
+/// What the magnetic search reads of a 2-D wall beside its straight-flight view
+/// (magnetic_exit-inl.hpp): its bounding disk, the rounding of a distance to it, its slack.
+template <class Wall, class Real = typename Wall::V::Scalar>
+ReachLanes<Real> reach_lanes(const Wall& w) {
+  return {w.bound_center.x(), w.bound_center.y(), w.bound_radius, Real(16 * scan::eps<Real> * w.bound_radius), w.slack};
+}
 
 /// The orbit of a magnetic flight from one state: what every wall's search starts from,
 /// computed once per flight (`collision` asks the flight for it with `scan_from(s)`).  It
@@ -100,26 +108,37 @@ struct Gyration {
   }
   /// The first wall of the table the orbit leaves through before t_end, with the state there
   /// from the crossing's half angle where a closed form found it (no sine or cosine).  The
-  /// closed forms' crossings are compared as half angles (cross products, no arctangent), so
-  /// that only a crossing earlier than the best so far gets a span test, and only the winner
-  /// an arctangent.
+  /// closed forms' crossings are compared as half angles (magnetic_exit-inl.hpp: cross
+  /// products, no arctangent), so that only a crossing earlier than the best so far gets a
+  /// span test, and only the winner an arctangent.
   FlightHit<BasicMagneticFlight<Real>> first_hit(const BasicTable<Real>& table, const Real& t_end) const
     requires(D == 2);
-  /// Position after turning by φ = 2ψ, from (cos ψ, sin ψ) ∝ u (no sine or cosine; 2-D).
-  V position_at_half_angle(const Vec2T<Real>& u) const requires(D == 2) {
-    const Real scale = 2 * inv_k / u.squaredNorm();  // (2/k) / |u|², with sin ψ cos ψ = u_x u_y/|u|²
-    return s.x + scale * (u.x() * u.y() * s.v + u.y() * u.y() * w0);
+  /// The hit from the earliest closed-form crossing through the table's segments and arcs
+  /// (`earliest`, through `wall`), as first_hit finds it: its time, if before t_end; then the
+  /// scans of the other walls, each up to the hit so far; the state at the hit.  (The lock-step
+  /// search finds `earliest` for several flights at once.)
+  FlightHit<BasicMagneticFlight<Real>> hit_from(const BasicTable<Real>& table,
+                                                const EarliestCrossing<Real, bool>& earliest, const WallId& wall,
+                                                const Real& t_end) const
+    requires(D == 2);
+  /// Makes the hit so far (before hit.t) the earliest crossing through the walls that have no
+  /// closed form (elliptic arcs), each scanned up to the hit so far; true if one is crossed
+  /// earlier.
+  bool scan_walls_without_closed_form(const BasicTable<Real>& table, FlightHit<BasicMagneticFlight<Real>>& hit) const
+    requires(D == 2);
+  /// The circle as magnetic_exit-inl.hpp reads it, its numbers in place (2-D).
+  GyrationLanes<const Real&> lanes() const requires(D == 2) {
+    return {s.x.x(), s.x.y(), s.v.x(), s.v.y(), w0.x(), w0.y(),   k,
+            inv_k,   speed,   center.x(), center.y(), radius, rounding};
   }
   /// Can the orbit meet the wall's bounding disk (before t_end)?  Not when the disk lies wholly
   /// outside the cyclotron circle or wholly inside it.
   template <class Wall>
   bool may_reach(const Wall& w, const Real& t_end) const requires(D == 2) {
-    const Real margin = rounding + 16 * scan::eps<Real> * w.bound_radius;
-    const Real reach = radius + w.bound_radius + margin, inner = radius - w.bound_radius - margin;
-    const Real d2 = (center - w.bound_center).squaredNorm();
-    if (d2 > reach * reach || (inner > 0 && d2 < inner * inner)) return false;
+    if (!gyration_reaches(ScalarLanes<Real>{}, lanes(), reach_lanes(w))) return false;
     if (t_end == never) return true;
     // The arc flown until t_end is no shorter than its chord.
+    const Real margin = rounding + 16 * scan::eps<Real> * w.bound_radius;
     const Real travel = speed * (t_end - s.t) + w.bound_radius + margin;
     return (s.x - w.bound_center).squaredNorm() <= travel * travel;
   }

@@ -1,6 +1,6 @@
-// The SIMD targets of the kernels that search in lanes (lockstep.hpp, free_lanes.hpp), compiled
-// by Google Highway for each and chosen at run time, or forced by the environment variable
-// BILLIARDS_SIMD=scalar|avx512|avx2|sse4|generic|auto.
+// The SIMD targets of the kernels that search in lanes (lockstep.hpp, free_lanes.hpp,
+// magnetic_lanes.hpp), compiled by Google Highway for each and chosen at run time, or forced by
+// the environment variable BILLIARDS_SIMD=scalar|avx512|avx2|sse4|generic|auto.
 #pragma once
 
 #include <cstdint>

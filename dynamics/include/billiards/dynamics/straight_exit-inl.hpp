@@ -45,9 +45,9 @@ struct SegmentLanes {
 
 /// Is the point (px, py) on the arc's circle within its span, ends included (and extended by
 /// the span tolerance)?  BasicArcWall::within_span.
-template <class L, class Arc>
-[[gnu::always_inline]] inline typename L::Truth arc_within_span(const L& l, const Arc& w,
-                                  const typename L::Num& px, const typename L::Num& py) {
+template <class L, class FW, class WT>
+[[gnu::always_inline]] inline typename L::Truth within_span(const L& l, const ArcLanes<FW, WT>& w,
+                                                              const typename L::Num& px, const typename L::Num& py) {
   using Num = typename L::Num;
   const Num ux = px - w.cx, uy = py - w.cy, tol = w.span_tol;
   return l.choose(w.full, [&] { return L::splat_truth(true); }, [&] {
@@ -58,6 +58,16 @@ template <class L, class Arc>
       return l.negate(l.both(w.to_x * uy - w.to_y * ux > tol, ux * w.from_y - uy * w.from_x > tol));
     });
   });
+}
+
+/// Is the point (px, py) on the segment's line within its span, ends included (and extended by
+/// the span tolerance)?  BasicSegmentWall::within_span.
+template <class L, class FW>
+[[gnu::always_inline]] inline typename L::Truth within_span(const L& l, const SegmentLanes<FW>& w,
+                                                              const typename L::Num& px, const typename L::Num& py) {
+  using Num = typename L::Num;
+  const Num along = (px - w.ax) * w.dir_x + (py - w.ay) * w.dir_y;
+  return l.both(along >= L::neg(w.span_tol), along <= L::splat(1) + w.span_tol);
 }
 
 /// The time the straight flight from s leaves the region through the arc w (before t_end),
@@ -123,7 +133,7 @@ template <class L, class FR, class FW, class WT>
     return l.choose(c <= zero, [&] { return zero; }, [&] { return Num(c / (L::sqrt(L::max(zero, D_line)) - b)); });
   });
   const Num t = s.t + dt;
-  const auto hit = l.both(exits, l.both(l.negate(t > t_end), arc_within_span(l, w, s.x + s.vx * dt, s.y + s.vy * dt)));
+  const auto hit = l.both(exits, l.both(l.negate(t > t_end), within_span(l, w, s.x + s.vx * dt, s.y + s.vy * dt)));
   return l.choose(hit, [&] { return t; }, now);
 }
 
@@ -145,8 +155,6 @@ template <class L, class FR, class FW>
   const Num t = s.t + dt;
   const auto in_time = l.both(exits, l.negate(t > t_end));
   if (l.none(in_time)) return no;
-  const Num along = (s.x + s.vx * dt - w.ax) * w.dir_x + (s.y + s.vy * dt - w.ay) * w.dir_y;
-  const auto within = l.both(along >= L::neg(w.span_tol), along <= L::splat(1) + w.span_tol);
-  return L::select(l.both(in_time, within), t, no);
+  return L::select(l.both(in_time, within_span(l, w, s.x + s.vx * dt, s.y + s.vy * dt)), t, no);
 }
 

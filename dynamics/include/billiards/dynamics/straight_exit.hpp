@@ -42,6 +42,10 @@ struct ScalarLanes {
     return abs(x);
   }
   static Num max(const Num& a, const Num& b) { return std::max(a, b); }
+  static Num atan2(const Num& y, const Num& x) {
+    using std::atan2;
+    return Num(atan2(y, x));
+  }
   static Num neg(const Num& a) { return -a; }
   /// Is the discriminant D of the ray against the arc's circle positive (a crossing)?  Asked
   /// only where `needed`.  In double the value decides unless it lies within its forward error

@@ -1,0 +1,242 @@
+// Straight and magnetic flights searched in lock step (free_lockstep.hpp, magnetic_lockstep.hpp)
+// against the scalar search, for every SIMD target this processor runs: the same hits, bit for
+// bit, from states along orbits (each starting on the wall it has just left) with and without
+// horizons, in every flat table (segments, focusing and dispersing arcs, holes, elliptic arcs)
+// and in one with more walls than a vector has lanes, in weak and strong fields of both signs;
+// and ensembles equal to `simulate`, particle by particle, for any thread count.
+#include "billiards/dynamics/collision.hpp"
+#include "billiards/dynamics/ensemble.hpp"
+#include "billiards/dynamics/free_lockstep.hpp"
+#include "billiards/dynamics/magnetic_lockstep.hpp"
+#include "billiards/geometry.hpp"
+
+#include "lanes_helpers.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace billiards;
+using dynamics::FreeFlight;
+using dynamics::MagneticFlight;
+using dynamics::State;
+using dynamics::Table;
+
+namespace {
+
+template <class Kernel>
+struct TargetKernel {
+  const char* name;
+  Kernel kernel;
+};
+/// The kernel of each SIMD target this processor runs, for the flight's lock-step table.
+template <class Flight>
+auto kernels() {
+  constexpr bool straight = std::is_same_v<Flight, FreeFlight>;
+  using Kernel = std::conditional_t<straight, dynamics::free_lanes::Kernel, dynamics::magnetic_lanes::Kernel>;
+  std::vector<TargetKernel<Kernel>> all;
+  for (const auto& t : dynamics::simd::runnable_targets()) {
+    if constexpr (straight) all.push_back({t.name, dynamics::free_lanes::kernel_of(t.bit)});
+    else all.push_back({t.name, dynamics::magnetic_lanes::kernel_of(t.bit)});
+  }
+  return all;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+template <class Flight>
+bool same_hit(const dynamics::FlightHit<Flight>& a, const dynamics::FlightHit<Flight>& b) {
+  if (a.wall != b.wall || !same_bits(a.t, b.t)) return false;
+  return !a.found() || (same_bits(a.point.x(), b.point.x()) && same_bits(a.point.y(), b.point.y()) &&
+                        same_bits(a.normal.x(), b.normal.x()) && same_bits(a.normal.y(), b.normal.y()) &&
+                        same_bits(a.state.x.x(), b.state.x.x()) && same_bits(a.state.x.y(), b.state.x.y()) &&
+                        same_bits(a.state.v.x(), b.state.v.x()) && same_bits(a.state.v.y(), b.state.v.y()) &&
+                        same_bits(a.state.t, b.state.t));
+}
+
+Table table_of(const std::string& shape) {
+  return Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + shape + ".yaml").region);
+}
+
+/// A 20-gon with three circular holes: 20 segments and 3 arcs.
+Table twenty_gon() {
+  std::string text = "name: twenty-gon\nboundary:\n  polygon: [";
+  for (int k = 0; k < 20; ++k)
+    text += (k ? ", [" : "[") + std::to_string(std::cos(2 * geometry::pi * k / 20)) + ", " +
+            std::to_string(std::sin(2 * geometry::pi * k / 20)) + "]";
+  text += R"(]
+holes:
+  - circle: {center: [0.3, 0], radius: 0.15}
+  - circle: {center: [-0.3, 0.3], radius: 0.1}
+  - circle: {center: [-0.2, -0.4], radius: 0.2}
+)";
+  return Table(geometry::parse_shape(text, "twenty-gon").region);
+}
+
+/// Fresh microcanonical starts and the states after each bounce of their orbits, each flight on
+/// its own clock, as in the ensembles.  (A magnetic orbit that circles without meeting a wall
+/// ends there.)
+template <class Flight>
+std::vector<State> states_along_orbits(const Table& table, const Flight& flight, int particles, int bounces) {
+  std::vector<State> states;
+  for (int p = 0; p < particles; ++p) {
+    dynamics::ParticleRng rng(97, std::uint64_t(p));
+    State s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
+    const double v2 = s.v.squaredNorm();
+    dynamics::Clock clock;
+    states.push_back(s);
+    for (int k = 0; k < bounces; ++k) {
+      const auto hit = dynamics::collision(table, flight, s);
+      if (!hit.found()) break;
+      dynamics::bounce(flight, s, hit);
+      dynamics::restore_speed(s.v, v2);
+      dynamics::restart_clock(flight, s, clock);
+      states.push_back(s);
+    }
+  }
+  return states;
+}
+
+std::vector<std::pair<std::string, Table>> flat_tables() {
+  std::vector<std::pair<std::string, Table>> tables;
+  for (const char* shape : {"clover", "stadium", "sinai", "mushroom", "square", "circle", "triangle", "l-room",
+                            "annulus", "ellipse", "sinai-ellipse", "elliptic-stadium"})
+    tables.emplace_back(shape, table_of(shape));
+  tables.emplace_back("twenty-gon", twenty_gon());
+  REQUIRE(tables.back().second.segments().size() == 20);
+  return tables;
+}
+
+/// Batches of every size 1..16 of states along the flight's orbits in the table and along
+/// straight orbits (on every wall, leaving it in every direction: a strong field's orbits from
+/// a fresh start may circle without meeting one), the states taken in turn, each state's horizon
+/// cycling through none and some that end flights before their walls: the lock-step hits equal
+/// the scalar search's, bit for bit, for every target.
+template <class Flight>
+void check_batches(const std::string& shape, const Table& table, const Flight& flight) {
+  using LockstepT = dynamics::LockstepTableOf<Flight>;
+  constexpr int lanes = LockstepT::lanes;
+  // Horizons, in units of the table's size.
+  const double horizons[] = {dynamics::never, 1e-3, 0.7, 3};
+  auto states = states_along_orbits(table, FreeFlight{}, 6, 2000);
+  if constexpr (!std::is_same_v<Flight, FreeFlight>) {
+    const auto own = states_along_orbits(table, flight, 6, 2000);
+    states.insert(states.end(), own.begin(), own.end());
+  }
+  const double size = (table.hi() - table.lo()).norm();
+  for (const auto& [name, kernel] : kernels<Flight>()) {
+    const LockstepT lockstep(table, flight, kernel);
+    REQUIRE(lockstep.usable());
+    int found = 0, mismatches = 0;
+    std::size_t next = 0;
+    for (int round = 0; next < states.size(); ++round) {
+      const int n = std::min<int>(1 + round % lanes, int(states.size() - next));
+      const State* batch[lanes];
+      double t_end[lanes];
+      for (int i = 0; i < n; ++i) {
+        batch[i] = &states[next + std::size_t(i)];
+        const double h = horizons[(next + std::size_t(i)) % 4];
+        t_end[i] = h == dynamics::never ? h : batch[i]->t + h * size;
+      }
+      dynamics::FlightHit<Flight> hits[lanes];
+      lockstep.collisions(batch, t_end, n, hits);
+      for (int i = 0; i < n; ++i) {
+        const auto expected = dynamics::collision(table, flight, *batch[i], t_end[i]);
+        found += expected.found();
+        if (!same_hit(hits[i], expected)) {
+          ++mismatches;
+          UNSCOPED_INFO(name << " kernel, " << shape << ", state " << next + std::size_t(i) << ": wall "
+                             << hits[i].wall << " at " << hits[i].t << ", scalar wall " << expected.wall << " at "
+                             << expected.t);
+        }
+      }
+      next += std::size_t(n);
+    }
+    INFO(name << " kernel, " << shape << ", " << states.size() << " states");
+    CHECK(mismatches == 0);
+    CHECK(found > int(states.size()) / 2);  // most flights end on a wall...
+    CHECK(found < int(states.size()));      // ...and some at their short horizon
+  }
+}
+
+}  // namespace
+
+TEST_CASE("free lock step: each batch's hits are the scalar search's, bit for bit, in every flat table") {
+  for (const auto& [shape, table] : flat_tables()) check_batches(shape, table, FreeFlight{});
+}
+
+TEST_CASE("magnetic lock step: each batch's hits are the scalar search's, bit for bit, in every flat table") {
+  // Cyclotron radii 10, 2, 0.3 and 0.05 (speed 1), turning either way.
+  for (const auto& [shape, table] : flat_tables())
+    for (const double omega : {0.1, -0.5, 1 / 0.3, -20.0}) {
+      INFO("Omega " << omega);
+      check_batches(shape, table, MagneticFlight{omega});
+    }
+}
+
+TEST_CASE("free lock step: of two walls hit at the same time, the first is kept, as the scalar search keeps it") {
+  // From the square's centre along its diagonals: each flight meets two walls at its corner at
+  // exactly the same time (the same operations on mirrored numbers).
+  const auto table = table_of("square");
+  const FreeFlight flight;
+  constexpr int lanes = dynamics::FreeLockstepTable::lanes;
+  State states[lanes];
+  const State* batch[lanes];
+  double t_end[lanes];
+  for (int i = 0; i < lanes; ++i) {
+    const double sx = i & 1 ? 1 : -1, sy = i & 2 ? 1 : -1, speed = 1 + i / 4;
+    states[i].x = geometry::Vec2(0.5, 0.5), states[i].v = speed * geometry::Vec2(sx, sy), states[i].t = 0;
+    batch[i] = &states[i], t_end[i] = dynamics::never;
+  }
+  for (const auto& [name, kernel] : kernels<FreeFlight>()) {
+    INFO(name << " kernel");
+    const dynamics::FreeLockstepTable lockstep(table, flight, kernel);
+    dynamics::FlightHit<FreeFlight> hits[lanes];
+    lockstep.collisions(batch, t_end, lanes, hits);
+    for (int i = 0; i < lanes; ++i) {
+      const auto expected = dynamics::collision(table, flight, states[i]);
+      REQUIRE(expected.found());
+      // Both walls at the corner give this time: the other one's exit time, asked alone.
+      int at_that_time = 0;
+      for (const auto& w : table.segments()) at_that_time += flight.exit_time(states[i], w, dynamics::never) == expected.t;
+      CHECK(at_that_time == 2);
+      CHECK(same_hit(hits[i], expected));
+    }
+  }
+}
+
+TEST_CASE("lock step: tables with a grid, or too many walls of a kind, or no kernel, are left to the scalar search") {
+  const auto wavy = table_of("wavy-1200");
+  REQUIRE(wavy.grid() != nullptr);
+  for (const auto& [name, kernel] : kernels<FreeFlight>()) CHECK_FALSE(dynamics::FreeLockstepTable(wavy, FreeFlight{}, kernel).usable());
+  for (const auto& [name, kernel] : kernels<MagneticFlight>())
+    CHECK_FALSE(dynamics::MagneticLockstepTable(wavy, MagneticFlight{1}, kernel).usable());
+  // BILLIARDS_SIMD=scalar
+  CHECK_FALSE(dynamics::FreeLockstepTable(table_of("clover"), FreeFlight{}, nullptr).usable());
+  CHECK_FALSE(dynamics::MagneticLockstepTable(table_of("clover"), MagneticFlight{1}, nullptr).usable());
+}
+
+TEST_CASE("lock step: free and magnetic ensembles equal simulate particle by particle, for every target and 1, 2 and 3 threads") {
+  for (const char* shape : {"clover", "mushroom", "elliptic-stadium"})
+    for (const bool verify : {false, true}) {
+      const auto table = table_of(shape);
+      dynamics::RunOptions opt;
+      opt.record_times = {0, 0.5, 10, 200};
+      opt.verify_every_flight = verify;
+      INFO(shape << (verify ? ", every flight verified" : ""));
+      for (const auto& [name, kernel] : kernels<FreeFlight>()) {
+        INFO(name << " kernel");
+        check_ensemble_equals_simulate(dynamics::FreeLockstepTable(table, FreeFlight{}, kernel), table, FreeFlight{}, opt, 40);
+      }
+      for (const double omega : {0.1, -3.0})
+        for (const auto& [name, kernel] : kernels<MagneticFlight>()) {
+          INFO(name << " kernel, Omega " << omega);
+          const MagneticFlight flight{omega};
+          check_ensemble_equals_simulate(dynamics::MagneticLockstepTable(table, flight, kernel), table, flight, opt, 40);
+        }
+    }
+}
