@@ -21,6 +21,7 @@ struct Lanes {
 
   Lanes() : undecided(hn::FirstN(D(), 0)) {}  // (not a default initializer: made for this target)
 
+  static constexpr bool reference = false;  // (doubles)
   static Num splat(double x) { return hn::Set(D(), x); }
   static Num never() { return splat(std::numeric_limits<double>::infinity()); }
   static Num select(Truth m, Num a, Num b) { return hn::IfThenElse(m, a, b); }
@@ -46,14 +47,6 @@ struct Lanes {
   static Num sqrt(Num x) { return hn::Sqrt(x); }
   static Num abs(Num x) { return hn::Abs(x); }
   static Num max(Num a, Num b) { return hn::IfThenElse(a < b, b, a); }  // (std::max's order)
-  /// Lane by lane, the C library's (there is no vector arctangent that rounds as it does).
-  static Num atan2(Num y, Num x) {
-    alignas(64) double ys[L], xs[L];
-    hn::Store(y, D(), ys);
-    hn::Store(x, D(), xs);
-    for (int i = 0; i < L; ++i) ys[i] = std::atan2(ys[i], xs[i]);
-    return hn::Load(D(), ys);
-  }
   static Num neg(Num a) { return hn::Neg(a); }
   /// Lanes whose D lies within its error bound are `undecided`.
   template <class Bound, class Ray, class Arc>

@@ -223,7 +223,7 @@ double Gyration<Real, D>::plane_exit(const Vec3& n, const Vec3& a, double slack,
   if (spanless && n.dot(axis) == 0) {
     const auto u = line_half_angle(ScalarLanes<double>{}, k, F0, n.dot(v_perp), n.dot(w0), speed, slack);
     if (u.x == 0 && u.y == 0) return never;
-    const double t = s.t + 2 * std::atan2(u.y, u.x) * inv_k;
+    const double t = s.t + 2 * half_angle_of(ScalarLanes<double>{}, u) * inv_k;
     return t > t_end ? never : t;
   }
   // Otherwise the scan: |f''| = |n·(v⊥ × Ω)| ≤ k |v⊥| |n⊥|, and the gap stays within r_c |n⊥| of

@@ -13,7 +13,6 @@
 #include "billiards/dynamics/magnetic_lanes.hpp"
 #include "billiards/dynamics/simd.hpp"
 
-#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <type_traits>  // (straight_exit-inl.hpp: no code)

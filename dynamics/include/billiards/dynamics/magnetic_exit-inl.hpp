@@ -9,8 +9,9 @@
 // Along the orbit a wall's gap is F0 + B1 sin φ + B2 (1 − cos φ) in the angle turned φ, a
 // quadratic form in (cos φ/2, sin φ/2): its outward zero, one per turn, is found in closed form
 // as a half-angle direction u ∝ (cos ψ, sin ψ), ψ = φ/2 ∈ [0, π) (u = 0: none).  Crossings are
-// compared as half angles (a cross product), so that the search needs no arctangent; its
-// caller takes one for the winner only.  (No include guard: included once into each namespace.)
+// compared as half angles (a cross product), so that only the earliest needs an arctangent,
+// for its time (half_angle_of; a reference type's own, L::atan2 where L::reference); the state
+// there needs no sine or cosine.  (No include guard: included once into each namespace.)
 
 /// A cyclotron circle from a state (Gyration's numbers): the start x, v (v⊥ in 2-D), v turned a
 /// quarter turn towards the centre w0, |Ω| and 1/|Ω|, |v|, the centre, r_c, and the rounding of
@@ -204,13 +205,45 @@ template <class L, class FG, class Wall, class FR>
   return kept;
 }
 
+/// The half angle ψ ∈ [0, π] of u = (x, y), y ≥ 0, u ≠ 0: atan2(y, x), in double to 2 ulps
+/// (test_magnetic_flight: against long double).  Written here, over the traits, so that one
+/// number and every SIMD target's lanes give the same bits: the C library's atan2 is not a
+/// vector function, and it rounds differently on processors with and without fused
+/// multiply-adds.  (SLEEF's non-FMA functions agree across targets too, but its 1-ulp arctangent
+/// costs 3× the C library's in one number and its 3.5-ulp one is less accurate.)  Cephes'
+/// arctangent: the argument reduced to |z| ≤ tan(π/8) about 0, π/4 or π/2 by one division of
+/// the components (no rounded quotient y/x in between), and a rational function of degree 4/5
+/// in z².
+template <class L>
+[[gnu::always_inline]] inline typename L::Num half_angle_of(const L& l, const HalfAngle<typename L::Num>& u) {
+  using Num = typename L::Num;
+  const Num zero = L::splat(0), ax = L::abs(u.x), y = u.y;
+  // atan(y/ax) = base + atan(z): z = y/ax (base 0), (y − ax)/(y + ax) (π/4), −ax/y (π/2).
+  const auto steep = y > L::splat(2.41421356237309504880) * ax, flat = y <= L::splat(0.66) * ax;
+  const Num z = L::select(steep, L::neg(ax), L::select(flat, y, Num(y - ax))) /
+                L::select(steep, y, L::select(flat, ax, Num(y + ax)));
+  const Num base = L::select(steep, L::splat(1.57079632679489661923), L::select(flat, zero, L::splat(7.85398163397448309616e-1)));
+  const Num tail = L::select(steep, L::splat(6.123233995736765886130e-17), L::select(flat, zero, L::splat(3.061616997868382943065e-17)));
+  const Num w = z * z;
+  const Num p = (((L::splat(-8.750608600031904122785e-1) * w + L::splat(-1.615753718733365076637e1)) * w +
+                  L::splat(-7.500855792314704667340e1)) * w + L::splat(-1.228866684490136173410e2)) * w +
+                L::splat(-6.485021904942025371773e1);
+  const Num q = ((((w + L::splat(2.485846490142306297962e1)) * w + L::splat(1.650270098316988542046e2)) * w +
+                  L::splat(4.328810604912902668951e2)) * w + L::splat(4.853903996359136964868e2)) * w +
+                L::splat(1.945506571482613964425e2);
+  const Num a = base + (z * (w * p / q) + z + tail);
+  // x < 0: π − atan(y/|x|), π = pi_hi + pi_lo.
+  return L::select(u.x < zero, Num(L::splat(3.14159265358979311600e0) - a + L::splat(1.22464679914735317723e-16)), a);
+}
+
 /// The time t0 + 2ψ/k at which the orbit from time t0 has turned by twice the half angle of u
-/// (u ≠ 0).
+/// (u ≠ 0).  (A reference type takes ψ from its own arctangent, at its precision.)
 template <class L, class FG>
 [[gnu::always_inline]] inline typename L::Num crossing_time(const L& l, const GyrationLanes<FG>& g,
                                                            const HalfAngle<typename L::Num>& u,
                                                            const typename L::Num& t0) {
-  return t0 + L::splat(2) * l.atan2(u.y, u.x) / g.k;
+  if constexpr (L::reference) return t0 + L::splat(2) * l.atan2(u.y, u.x) / g.k;
+  else return t0 + L::splat(2) * half_angle_of(l, u) / g.k;
 }
 
 /// Position and velocity after turning by φ = 2ψ, from sin ψ and cos ψ: sin φ = 2 sin ψ cos ψ,

@@ -14,11 +14,13 @@
 // F0 + B1 sin φ + B2 (1 − cos φ) in the angle turned φ = kτ, a quadratic form in
 // (cos φ/2, sin φ/2).  Its zero with F increasing, in the stable root formula of the quadratic,
 // is the outward crossing; there is one per turn, so the orbit leaves through the wall there or
-// never.  The same closed form serves a 3-D plane parallel to the field, and a plane across it
-// is met at a linear rate.  Elliptic arcs (a circle maps to an ellipse under the arc's affine
-// map, so the mapped flight is not a magnetic flight) and the other 3-D walls are searched by
-// the certified scan, whose `earliest` follows the guiding axis x0 + w0/k + v∥ τ: the helix stays
-// within r_c of it, so a wall farther than that is passed without sampling.
+// never (magnetic_exit-inl.hpp, written once for one number and for the lock-step lanes of
+// magnetic_lockstep.hpp).  The same closed form serves a 3-D plane parallel to the field, and
+// a plane across it is met at a linear rate.  Elliptic arcs (a circle maps to an ellipse under
+// the arc's affine map, so the mapped flight is not a magnetic flight) and the other 3-D walls
+// are searched by the certified scan, whose `earliest` follows the guiding axis
+// x0 + w0/k + v∥ τ: the helix stays within r_c of it, so a wall farther than that is passed
+// without sampling.
 #pragma once
 
 #include "billiards/dynamics/collision.hpp"

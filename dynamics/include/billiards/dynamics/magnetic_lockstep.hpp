@@ -4,7 +4,7 @@
 // The kernel (src/magnetic_lanes_kernel.cpp) does what Gyration::first_hit does for the segments
 // and arcs, with magnetic_exit-inl.hpp, the scalar search's own source, compiled for each SIMD
 // target by Google Highway: the cyclotron circle, each flight's earliest outward crossing, its
-// time (the C library's arctangent, lane by lane) and the state there.  Elliptic arcs are then
+// time (half_angle_of's arctangent) and the state there.  Elliptic arcs are then
 // scanned one particle at a time up to that hit, as Gyration::hit_from scans them.  So the
 // collisions, and the trajectories, are the scalar search's, bit for bit.
 #pragma once

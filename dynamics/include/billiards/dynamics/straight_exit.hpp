@@ -42,6 +42,8 @@ struct ScalarLanes {
     return abs(x);
   }
   static Num max(const Num& a, const Num& b) { return std::max(a, b); }
+  /// A reference type (long double, MPFR) computes with its own functions, at its precision.
+  static constexpr bool reference = !std::is_same_v<Real, double>;
   static Num atan2(const Num& y, const Num& x) {
     using std::atan2;
     return Num(atan2(y, x));
