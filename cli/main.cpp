@@ -18,6 +18,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <new>
+#include <optional>
+#include <string>
 
 namespace billiards::cli {
 namespace {
@@ -70,13 +72,24 @@ int main(int argc, char** argv) {
   billiards::cli::add_escape(app);
   billiards::cli::add_trajectory(app);
   bool speaks = true;  // in an MPI job only the first rank prints; all compute
-  const auto error = [&](const std::string& message, int status) {
-    if (speaks) fmt::print(stderr, "billiard: error: {}\n", message);
+  std::optional<billiards::cli::Ranks> ranks;  // (MPI ends after the error is out)
+  // A failed job's ranks leave together: an MPI launcher stops the job at the first rank that
+  // exits with an error, and would stop the first rank before it has printed the message.  A
+  // rank that fails alone, the others still at work, prints its own message and ends the job.
+  const auto failed = [&](const std::string& message, int status) {
+    if (ranks && !ranks->fail_together(10)) {
+      if (!speaks) fmt::print(stderr, "billiard: error: rank {}: {}\n", ranks->rank(), message);
+      ranks->abort(status);
+    }
     return status;
   };
+  const auto error = [&](const std::string& message, int status) {
+    if (speaks) fmt::print(stderr, "billiard: error: {}\n", message);
+    return failed(message, status);
+  };
   try {
-    const billiards::cli::Ranks ranks(argc, argv);
-    speaks = ranks.root();
+    ranks.emplace(argc, argv);
+    speaks = ranks->root();
     if (!speaks && !std::freopen("/dev/null", "w", stdout)) return 1;
     billiards::cli::require_known_command(app, argc, argv);
     billiards::dynamics::simd::chosen_target();  // (BILLIARDS_SIMD checked before any output)
@@ -84,7 +97,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {  // --help
     return speaks ? app.exit(e) : 0;
   } catch (const CLI::RuntimeError& e) {  // a command's own status, its message printed
-    return e.get_exit_code();
+    return e.get_exit_code() == 0 ? 0 : failed("exit status " + std::to_string(e.get_exit_code()), e.get_exit_code());
   } catch (const CLI::Error& e) {
     std::string help = "billiard --help";
     for (const auto* sub : app.get_subcommands()) help = "billiard " + sub->get_name() + " --help";

@@ -1,9 +1,11 @@
 #include "ranks.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
 #ifdef BILLIARDS_MPI
 #include <mpi.h>
@@ -79,6 +81,32 @@ void Ranks::barrier() const {
 #ifdef BILLIARDS_MPI
   if (mpi_) MPI_Barrier(MPI_COMM_WORLD);
 #endif
+}
+
+bool Ranks::fail_together(double seconds) const {
+#ifdef BILLIARDS_MPI
+  if (mpi_) {
+    MPI_Request request;
+    MPI_Ibarrier(MPI_COMM_WORLD, &request);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    for (int done = 0;;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) return true;
+      if (std::chrono::steady_clock::now() > deadline) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+  }
+#else
+  (void)seconds;
+#endif
+  return true;
+}
+
+void Ranks::abort(int status) const {
+#ifdef BILLIARDS_MPI
+  if (mpi_) MPI_Abort(MPI_COMM_WORLD, status);
+#endif
+  std::_Exit(status);
 }
 
 const Ranks& ranks() {

@@ -28,6 +28,12 @@ class Ranks {
   /// Bitwise OR of `bytes` over all ranks, on every rank.
   void combine(void* bytes, std::size_t count) const;
   void barrier() const;
+  /// On the way out with an error: waits up to `seconds` for every rank to come here too (a bad
+  /// input fails them all at once), and says whether they did.  Nonblocking, so that a rank
+  /// failing alone, the others still at work, is not held forever.
+  bool fail_together(double seconds) const;
+  /// Ends the whole job with `status` (a rank that failed alone).
+  [[noreturn]] void abort(int status) const;
 
  private:
   int rank_ = 0, size_ = 1;
