@@ -215,7 +215,7 @@ template <class L, class FG, class Wall, class FR>
 /// the components (no rounded quotient y/x in between), and a rational function of degree 4/5
 /// in z².
 template <class L>
-[[gnu::always_inline]] inline typename L::Num half_angle_of(const L& l, const HalfAngle<typename L::Num>& u) {
+[[gnu::always_inline]] inline typename L::Num half_angle_of(const L&, const HalfAngle<typename L::Num>& u) {
   using Num = typename L::Num;
   const Num zero = L::splat(0), ax = L::abs(u.x), y = u.y;
   // atan(y/ax) = base + atan(z): z = y/ax (base 0), (y − ax)/(y + ax) (π/4), −ax/y (π/2).
