@@ -4,15 +4,20 @@
 // lockstep.cpp chooses one at run time.  The search holds sixteen lanes whatever the target:
 // a Pack is 16 / L vectors of the target's L lanes.
 //
-// Every line below transcribes a line of the scalar search, lane by lane, with the operands in
-// the same order (the source is named at each step): SphereGap's windows, slope_sign,
-// may_meet_span, monotone_crossing, certainly_below, PhaseSample::shifted, sin_cos; and for the
-// state at the hit, PeriodicDriveFlight::advance, phase.hpp's reduce_phase and
-// BasicArcWall::contact.  Branches become selections; a lane leaves the search (`handed_back`)
-// wherever the scalar search would take a path not transcribed here.  The lanes use only
-// Highway's operations that round as IEEE (no fused multiply-add: -ffp-contract=off keeps the
-// compiler from fusing them either), builtins and this file's own functions (no std:: function
-// and no Eigen, whose inline functions would be compiled for one target and linked for all).
+// The search's arithmetic is the scalar search's own source, with the traits of sixteen lanes
+// (PackLanes): drive_phase-inl.hpp (the phase's advance and reduction, its sine and cosine and
+// their shift), driven_exit-inl.hpp (SphereGap's numbers, windows, sign of f' and Taylor
+// samples, the span test of a window, monotone_crossing's Halley step and certain landing) and
+// straight_exit-inl.hpp (the span test of a point).  This file holds what differs: the rounds
+// in which each lane chooses its next window or steps its root search (first_hit_in_windows
+// and monotone_crossing's loops, branches become selections), the flight's numbers along its
+// guide and its motion (Quiver, computed as its constructor and `motion` do), and the state at
+// the hit (PeriodicDriveFlight::advance and BasicArcWall::contact).  A lane leaves the search
+// (`handed_back`) wherever the scalar search would take a path not run here.  The lanes use
+// only Highway's operations that round as IEEE (no fused multiply-add: -ffp-contract=off keeps
+// the compiler from fusing them either), builtins and the functions of the files above and this
+// one (no std:: function and no Eigen, whose inline functions would be compiled for one target
+// and linked for all).
 
 #include "simd_targets.hpp"  // (first: the targets compiled)
 #undef HWY_TARGET_INCLUDE
@@ -168,7 +173,6 @@ LANES Mask operator>>(Mask x, int bits) {
 LANES Mask& operator&=(Mask& x, Mask y) { return x = x & y; }
 LANES Mask& operator|=(Mask& x, Mask y) { return x = x | y; }
 
-constexpr double eps = 0x1p-52;  // std::numeric_limits<double>::epsilon()
 constexpr double inf = __builtin_inf();
 
 // ---- Lanes ---------------------------------------------------------------------------------
@@ -239,95 +243,62 @@ LANES Parts<V> pick(Parts<V> table, Mask index) {
 }
 LANES Pack cross(Pack ax, Pack ay, Pack bx, Pack by) { return ax * by - ay * bx; }
 
-// ---- The drive's sine and cosine (phase.hpp's sin_cos and its fdlibm kernels) --------------
+// ---- The traits of sixteen lanes, and the scalar search's own source -----------------------
 
-LANES Pack kernel_sin(Pack x) {
-  const Pack z = x * x;
-  const Pack r = 8.33333333332248946124e-03 +
-                 z * (-1.98412698298579493134e-04 +
-                      z * (2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)));
-  return x + z * x * (-1.66666666666666324348e-01 + z * r);
-}
-LANES Pack kernel_cos(Pack x) {
-  const Pack z = x * x;
-  const Pack r =
-      z * (4.16666666666666019037e-02 +
-           z * (-1.38888888888741095749e-03 +
-                z * (2.48015872894767294178e-05 +
-                     z * (-2.75573143513906633035e-07 + z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
-  const Pack hz = 0.5 * z, w = 1.0 - hz;
-  return w + (((1.0 - w) - hz) + z * r);
-}
+/// The traits of a Pack for the algorithms written over `Lanes` (straight_exit-inl.hpp,
+/// drive_phase-inl.hpp, driven_exit-inl.hpp): one flight per lane, branches as selections.
+struct PackLanes {
+  using Num = Pack;
+  using Truth = Mask;
+  LANES static Pack splat(double x) { return ::billiards::dynamics::lockstep::HWY_NAMESPACE::splat(x); }
+  LANES static Pack fraction(int a, int b) { return splat(double(a) / b); }
+  LANES static Pack never() { return splat(inf); }
+  LANES static Pack eps() { return splat(0x1p-52); }
+  LANES static Pack select(Mask m, Pack a, Pack b) { return sel(m, a, b); }
+  LANES static Mask select_truth(Mask m, Mask a, Mask b) { return sel(m, a, b); }
+  LANES static Mask splat_truth(bool a) { return a ? ~Mask{} : Mask{}; }
+  LANES static bool none(Mask m) { return !any(m); }
+  template <class F, class G>
+  LANES static auto choose(Mask m, F f, G g) {
+    return sel(m, f(), g());
+  }
+  template <class F, class G>
+  LANES static auto choose(bool m, F f, G g) {
+    return m ? f() : g();
+  }
+  LANES static Mask both(Mask a, Mask b) { return a & b; }
+  LANES static Mask either(Mask a, Mask b) { return a | b; }
+  LANES static Mask negate(Mask a) { return ~a; }
+  LANES static Pack sqrt(Pack x) { return ::billiards::dynamics::lockstep::HWY_NAMESPACE::sqrt(x); }
+  LANES static Pack abs(Pack x) { return ::billiards::dynamics::lockstep::HWY_NAMESPACE::abs(x); }
+  LANES static Pack max(Pack a, Pack b) { return ::billiards::dynamics::lockstep::HWY_NAMESPACE::max(a, b); }
+  LANES static Pack min(Pack a, Pack b) { return ::billiards::dynamics::lockstep::HWY_NAMESPACE::min(a, b); }
+  LANES static Pack neg(Pack a) { return -a; }
+  LANES static Pack trunc(Pack x) { return to_double(to_long(x)); }
+  /// ScalarLanes::to_quadrant, on the doubles' bits.
+  LANES static void to_quadrant(Pack k, Pack& s, Pack& c) {
+    const Mask q = to_long(k), sb = bits(s), cb = bits(c);
+    const Mask odd = -(q & 1);
+    const Mask sq = (sb & ~odd) | (cb & odd), cq = (cb & ~odd) | (sb & odd);
+    s = from_bits(sq ^ ((q & 2) << 62));
+    c = from_bits(cq ^ (((q + 1) & 2) << 62));
+  }
+};
+
+#include "billiards/dynamics/straight_exit-inl.hpp"
+#include "billiards/dynamics/drive_phase-inl.hpp"
+#include "billiards/dynamics/driven_exit-inl.hpp"
+
 /// sin θ and cos θ where |θ| < 2¹⁹π (`fast`; the other lanes are handed back).
-LANES void sin_cos(Pack theta, Pack& s, Pack& c, Mask& fast) {
+LANES SinCos<Pack> sin_cos(Pack theta, Mask& fast) {
   fast = abs(theta) < 0x1p19 * 3.14159265358979311600;
-  constexpr double two_over_pi = 6.36619772367581382433e-01, pio2_1 = 1.57079632673412561417e+00,
-                   pio2_1t = 6.07710050650619224932e-11;
-  const Pack th = sel(fast, theta, splat(0.0));
-  const Pack k = (th * two_over_pi + 0x1.8p52) - 0x1.8p52;
-  const Pack x = (th - k * pio2_1) - k * pio2_1t;
-  const Mask q = to_long(k);
-  const Mask sb = bits(kernel_sin(x)), cb = bits(kernel_cos(x));
-  const Mask odd = -(q & 1);
-  const Mask sq = (sb & ~odd) | (cb & odd), cq = (cb & ~odd) | (sb & odd);
-  s = from_bits(sq ^ ((q & 2) << 62));
-  c = from_bits(cq ^ (((q + 1) & 2) << 62));
-}
-
-// ---- The drive's phase in two doubles (phase.hpp) ------------------------------------------
-
-/// detail::two_sum: a + b = s + e exactly.
-LANES void two_sum(Pack a, Pack b, Pack& s, Pack& e) {
-  s = a + b;
-  const Pack bb = s - a;
-  e = (a - (s - bb)) + (b - bb);
-}
-/// detail::fast_two_sum: a + b = s + e exactly when |a| ≥ |b|.
-LANES void fast_two_sum(Pack a, Pack b, Pack& s, Pack& e) {
-  s = a + b;
-  e = b - (s - a);
-}
-/// detail::two_prod: a·b = p + e exactly (Dekker's product on Veltkamp's halves).
-LANES void two_prod(Pack a, Pack b, Pack& p, Pack& e) {
-  auto split = [](Pack x, Pack& high, Pack& low) LANES_LAMBDA {
-    const Pack c = phase_constants::split * x;
-    high = c - (c - x);
-    low = x - high;
-  };
-  Pack ah, al, bh, bl;
-  split(a, ah, al);
-  split(b, bh, bl);
-  p = a * b;
-  e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+  return sin_cos_below_limit<PackLanes>(sel(fast, theta, splat(0.0)));
 }
 /// reduce_phase(hi + lo) below phase_constants::fast_limit (`fast`; the other lanes' results are
 /// meaningless: MPFR reduces them).
-LANES void reduce_phase(Pack hi, Pack lo, Pack& r_hi, Pack& r_lo, Mask& fast) {
-  using namespace phase_constants;
-  fast = abs(hi) < fast_limit;
-  const Pack h = sel(fast, hi, splat(0.0));
-  auto minus_turns = [&](Pack k, Pack& turned_hi, Pack& turned_lo) LANES_LAMBDA {
-    Pack s, e;
-    two_sum(h - k * C1, -(k * C2), s, e);
-    fast_two_sum(s, e + (lo - k * C3), turned_hi, turned_lo);
-  };
-  const Pack k = to_double(to_long(h * inv_two_pi));
-  minus_turns(k, r_hi, r_lo);
-  const Mask below = r_hi < 0, above = r_hi >= two_pi;
-  if (any(below | above)) {
-    Pack again_hi, again_lo;
-    minus_turns(sel(below, k - 1, k + 1), again_hi, again_lo);
-    r_hi = sel(below | above, again_hi, r_hi), r_lo = sel(below | above, again_lo, r_lo);
-  }
-}
-
-/// PhaseSample::shifted: sin and cos of θ + h from those of θ.
-LANES void shifted(Pack sin, Pack cos, Pack h, Pack& sn, Pack& cs) {
-  const Pack z = h * h;
-  const Pack sin_h = h * (1 - z * (1.0 / 6) * (1 - z * (1.0 / 20) * (1 - z * (1.0 / 42))));
-  const Pack cos_h_1 = -z * 0.5 * (1 - z * (1.0 / 12) * (1 - z * (1.0 / 30) * (1 - z * (1.0 / 56))));
-  sn = sin + (sin * cos_h_1 + cos * sin_h);
-  cs = cos + (cos * cos_h_1 - sin * sin_h);
+LANES Unevaluated<Pack> reduce_phase(Pack hi, Pack lo, Mask& fast) {
+  fast = abs(hi) < phase_constants::fast_limit;
+  return reduce_phase_below_limit<PackLanes>(Unevaluated<Pack>{sel(fast, hi, splat(0.0)), lo});
 }
 
 // ---- One wall, lane by lane ------------------------------------------------------------------
@@ -351,20 +322,21 @@ struct Arc {
       : cx(splat(a.cx[w])), cy(splat(a.cy[w])), r(splat(a.r[w])), sign(splat(a.sign[w])), slack(splat(a.slack[w])),
         fx(splat(a.fx[w])), fy(splat(a.fy[w])), tx(splat(a.tx[w])), ty(splat(a.ty[w])), full(a.full[w] ? ~Mask{} : Mask{}),
         half(a.half[w] ? ~Mask{} : Mask{}) {}
-  /// BasicArcWall::within_span of (x, y).
-  LANES Mask within_span(Pack x, Pack y) const {
-    const Pack ux = x - cx, uy = y - cy, tol = slack * r;
-    const Mask half_span = (cross(fx, fy, ux, uy) >= -tol) & (cross(ux, uy, tx, ty) >= -tol);
-    const Mask long_span = ~((cross(tx, ty, ux, uy) > tol) & (cross(ux, uy, fx, fy) > tol));
-    return full | sel(half, half_span, long_span);
+  /// As straight_exit-inl.hpp and driven_exit-inl.hpp read it (arc_lanes; the fields they do
+  /// not read for a span test are the circle's own).
+  LANES ArcLanes<Pack, Mask> lanes() const {
+    const Pack r2 = r * r;
+    return {cx, cy, r, r2, r2, slack * r, fx, fy, tx, ty, sign > 0, full, half};
   }
+  /// BasicArcWall::within_span of (x, y).
+  LANES Mask within_span(Pack x, Pack y) const { return ::billiards::dynamics::lockstep::HWY_NAMESPACE::within_span(PackLanes{}, lanes(), x, y); }
 };
 
 /// The flights' lanes: Quiver's fields (forced_flight.hpp), computed as its constructor does.
 struct Quiver {
   Pack sx, sy, v0x, v0y, phase, sin_phase, cos_phase;
   Pack omega, accel_x, accel_y, amp_x_x, amp_x_y, amp_v_x, amp_v_y, accel_norm, inv_omega, delta;
-  Pack ux, uy, g0x, g0y, uu, inv_uu, speed, speed_bound, rounding_rate;
+  Pack ux, uy, g0x, g0y, uu, inv_uu, speed, wobble, speed_bound, rounding_rate;
   Mask creeping;  // (handed back: the scalar search, wall by wall)
   explicit Quiver(const Drive& d, const Flights& f)
       : sx(load(f.sx)), sy(load(f.sy)), v0x(load(f.vx)), v0y(load(f.vy)), phase(load(f.phase_hi) + load(f.phase_lo)),
@@ -377,38 +349,24 @@ struct Quiver {
     uu = ux * ux + uy * uy;
     inv_uu = sel(uu > 0, 1 / uu, splat(0.0));
     speed = sqrt(uu);
-    speed_bound = speed + accel_norm * inv_omega;
+    wobble = accel_norm * inv_omega;
+    speed_bound = speed + wobble;
     creeping = speed * 6.28318530717958647692 < delta * omega;
     rounding_rate = sel(creeping, speed, speed_bound);
   }
+  LANES GuideLanes<Pack> lanes() const { return {uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, omega}; }
 };
 
-/// SphereGap's rounding level: tol0 + tol1 τ.
-struct Tolerance {
-  Pack tol0, tol1;
-  Tolerance(const Quiver& q, const Arc& a)
-      : tol0(a.slack + 8 * eps * (((abs(q.sx - a.cx) + abs(q.sy - a.cy)) + a.r) + q.delta)),
-        tol1(8 * eps * q.rounding_rate) {}
-  Pack operator()(Pack tau) const { return tol0 + tol1 * tau; }
-};
-
-/// The signs of f' in the windows [start, end] of margin m (SphereGap::slope_sign): +1, −1 or 0.
-LANES Pack slope_sign(const Quiver& q, const Arc& a, Pack start, Pack end, Pack margin) {
-  const Pack m2 = 2 * margin, inner = a.r - m2, outer = a.r + m2;
-  const Mask undecided = ((end - end) != 0) | ~(inner - q.delta > 0);  // (end not finite)
+/// SphereGap's numbers for arc a along each lane's flight (those a caller does not read cost
+/// nothing: inlined, they are never computed).
+LANES SphereGapLanes<Pack> gap_of(const Quiver& q, const Arc& a) {
   const Pack q0x = q.g0x - a.cx, q0y = q.g0y - a.cy;
-  const Pack qu0 = q0x * q.ux + q0y * q.uy;
-  const Pack qs = qu0 + q.uu * start, qe = qu0 + q.uu * end;
-  const Pack wobble = q.accel_norm * q.inv_omega + 2 * q.delta * q.speed_bound / (inner - q.delta);
-  const Pack threshold = wobble * outer + 16 * eps * ((abs(q0x) + abs(q0y)) * (abs(q.ux) + abs(q.uy)) + q.uu * end +
-                                                      q.speed_bound * outer);
-  const Mask outward = qs > threshold, inward = qe < -threshold;
-  const Pack one = splat(1.0), minus = splat(-1.0), zero = splat(0.0);
-  const Pack focusing = sel(outward, one, sel(inward, minus, zero)), dispersing = sel(inward, one, sel(outward, minus, zero));
-  return sel(undecided, zero, sel(a.sign > 0, focusing, dispersing));
+  return sphere_gap<PackLanes>(q.lanes(), a.r, a.sign, a.slack, q0x * q.ux + q0y * q.uy, q0x * q0x + q0y * q0y,
+                               (abs(q0x) + abs(q0y)) * (abs(q.ux) + abs(q.uy)), abs(q.sx - a.cx) + abs(q.sy - a.cy),
+                               q.rounding_rate);
 }
 
-/// A lane's windows: two slots per arc (SphereGap::windows' first and second clip_window).
+/// A lane's windows: two slots per arc (SphereGap::windows' first and second).
 struct Windows {
   Pack start[2 * max_arcs], end[2 * max_arcs], margin[2 * max_arcs];
   Mask below[2 * max_arcs], open[2 * max_arcs];  // open: found and not yet visited
@@ -422,58 +380,21 @@ struct Windows {
 /// inward guide cannot be outward too), and one visit fewer for a lane is one round fewer for
 /// all sixteen when it is the last to finish.
 LANES void arc_windows(const Quiver& q, const Arc& a, Pack horizon, Mask live, Windows& out, int w) {
-  const Tolerance tolerance(q, a);
-  const Pack q0x = q.g0x - a.cx, q0y = q.g0y - a.cy;
-  const Pack b = q0x * q.ux + q0y * q.uy, cc = q0x * q0x + q0y * q0y, uu = q.uu;
-  const Pack reach = a.r + 2 * (q.delta + tolerance(horizon)), k_reach = cc - reach * reach;
-  const Mask out_of_reach = (k_reach > 0) & ((b >= 0) | (b * b < uu * k_reach));
-  // margin_time(horizon, window_horizon(−b/|u|², r + 2δ, tol0, tol1, |u|))
-  Pack margin_time = horizon;
-  if (any(live & (horizon == inf))) {  // (not in ensembles, which have a horizon)
-    const Pack t0 = -b * q.inv_uu, d = a.r + 2 * q.delta, slack = q.speed - 2 * tolerance.tol1;
-    const Pack bound = sel(slack > 0, t0 + (d + 2 * (tolerance.tol0 + tolerance.tol1 * t0)) / slack, splat(inf));
-    margin_time = sel(horizon < inf, horizon, bound);
+  const SphereGapLanes<Pack> g = gap_of(q, a);
+  WindowLanes<Pack, Mask> found[2];
+  windows<PackLanes>(g, q.lanes(), horizon, live, found[0], found[1]);
+  for (int j = 0; j < 2; ++j) {
+    const int slot = 2 * w + j;
+    const auto& f = found[j];
+    out.open[slot] = f.open & ~(slope_sign<PackLanes>(g, q.lanes(), f.start, f.end, f.margin) < 0);
+    out.start[slot] = f.start, out.end[slot] = f.end, out.margin[slot] = f.margin, out.below[slot] = f.below;
   }
-  const Pack m = q.delta + tolerance(margin_time);
-  auto at_distance = [&](Pack rho, Pack& t1, Pack& t2) LANES_LAMBDA {
-    const Pack k = cc - rho * rho, D = b * b - uu * k;
-    const Pack root = sqrt(D);
-    const Mask b_neg = b <= 0;
-    // (k/(root − b) where b ≤ 0, −k/(b + root) elsewhere: one division.)
-    const Pack quotient = sel(b_neg, k, -k) / sel(b_neg, root - b, b + root);
-    t2 = sel(b_neg, (root - b) * q.inv_uu, quotient);
-    t1 = sel(b_neg, sel(root - b > 0, quotient, splat(0.0)), -(b + root) * q.inv_uu);
-    return D >= 0;
-  };
-  Pack t1, t2, t3, t4;
-  const Mask outer = live & (uu > 0) & ~out_of_reach & at_distance(a.r + 2 * m, t1, t2);
-  const Pack inner = a.r - 2 * m;
-  const Mask two = (inner > 0) & at_distance(inner, t3, t4);
-  const Mask outside_is_below = a.sign < 0;
-  // clip_window(start, end, below)
-  // (Inlined by force: as a function, its 128-byte arguments and results go through memory.)
-  auto clip = [&](int slot, Mask found, Pack start, Pack end, Mask below) LANES_LAMBDA {
-    out.open[slot] = found & ~((end < 0) | (start > horizon));
-    out.start[slot] = max(start, splat(0.0));
-    out.end[slot] = min(end, horizon);
-    out.margin[slot] = m;
-    out.below[slot] = below & (start > 0);
-    out.open[slot] &= ~(slope_sign(q, a, out.start[slot], out.end[slot], m) < 0);
-  };
-  clip(2 * w, outer, t1, sel(two, t3, t2), outside_is_below);
-  clip(2 * w + 1, outer & two, t4, t2, ~outside_is_below);
 }
 
 /// may_meet_span(arc, guide(start), guide(end), δ): can the particle reach the arc's span?
 LANES Mask may_meet_span(const Quiver& q, const Arc& a, Pack start, Pack end) {
-  const Pack ax = (q.g0x + q.ux * start) - a.cx, ay = (q.g0y + q.uy * start) - a.cy;
-  const Pack bx = (q.g0x + q.ux * end) - a.cx, by = (q.g0y + q.uy * end) - a.cy;
-  const Pack margin = a.r * (a.slack + q.delta) + 16 * eps * a.r * ((abs(ax) + abs(ay)) + (abs(bx) + abs(by)));
-  const Mask half_span = (max(cross(a.fx, a.fy, ax, ay), cross(a.fx, a.fy, bx, by)) >= -margin) &
-                         (max(cross(ax, ay, a.tx, a.ty), cross(bx, by, a.tx, a.ty)) >= -margin);
-  const Mask long_span = ~((min(cross(a.tx, a.ty, ax, ay), cross(a.tx, a.ty, bx, by)) > margin) &
-                           (min(cross(ax, ay, a.fx, a.fy), cross(bx, by, a.fx, a.fy)) > margin));
-  return a.full | sel(a.half, half_span, long_span);
+  return may_meet_span<PackLanes>(a.lanes(), a.slack, q.delta, (q.g0x + q.ux * start) - a.cx, (q.g0y + q.uy * start) - a.cy,
+                                  (q.g0x + q.ux * end) - a.cx, (q.g0y + q.uy * end) - a.cy);
 }
 
 /// The fields of a where m, else those of b.
@@ -523,16 +444,12 @@ class Lanes {
       check_midpoints(cells, found, st, t, hits);
       // set_phase_at: θ = advance_phase(s.phase, ω, τ), its sine and cosine shifted from the
       // sample's by h = θ − sample (Phase's operator−, then to double).
-      Pack p, e, th_hi, th_lo, h_hi, h_lo;
-      two_prod(q.omega, tau, p, e);
-      two_sum(load(f.phase_hi), p, th_hi, th_lo);
-      th_lo = th_lo + (load(f.phase_lo) + e);
-      two_sum(th_hi, -theta_, h_hi, h_lo);
-      const Pack h = h_hi + (h_lo + (th_lo - 0.0));
-      Pack sn, cs, phase_hi, phase_lo;
-      shifted(sin_, cos_, h, sn, cs);
+      const auto theta = advance_phase<PackLanes>(Unevaluated<Pack>{load(f.phase_hi), load(f.phase_lo)}, q.omega, tau);
+      const auto shift = phase_difference(theta, Unevaluated<Pack>{theta_, splat(0.0)});
+      const Pack h = shift.hi + shift.lo;
+      const auto [sn, cs] = shifted<PackLanes>(SinCos<Pack>{sin_, cos_}, h);
       Mask fast;
-      reduce_phase(th_hi, th_lo, phase_hi, phase_lo, fast);
+      const auto [phase_hi, phase_lo] = reduce_phase(theta.hi, theta.lo, fast);
       made = found & (abs(h) <= 0.05) & fast;
       // advance: v = s.v + (F/mω)(sin θ − sin θ_s), x = s.x + u τ − (F/mω²)(cos θ − cos θ_s).
       const Pack vx = q.v0x + q.amp_v_x * (sn - q.sin_phase), vy = q.v0y + q.amp_v_y * (sn - q.sin_phase);
@@ -625,7 +542,7 @@ class Lanes {
     const Mask wall = slot >> 1;
     const Arc a(all_, wall);
     end = min(end, tau_best_);
-    const Pack slope = slope_sign(q_, a, start, end, margin);
+    const Pack slope = slope_sign<PackLanes>(gap_of(q_, a), q_.lanes(), start, end, margin);
     const Mask passes = ~may_meet_span(q_, a, start, end);
     const Mask kept = go & ~((slope < 0) | passes);
     const Mask uncertain = kept & (slope == 0);  // (the certified scan: the scalar search)
@@ -640,7 +557,7 @@ class Lanes {
     lo_ = sel(begin, start, lo_), hi_ = sel(begin, end, hi_);
     bracketed_ &= ~begin;
     steps_ = sel(begin, Mask{}, steps_);
-    const Pack jerk = 2 * q_.accel_norm * (3 * q_.speed_bound + (cur_.r + 2 * margin + q_.delta) * q_.omega);
+    const Pack jerk = jerk_bound<PackLanes>(gap_of(q_, cur_), q_.lanes(), margin);
     jerk_ = sel(begin, jerk, jerk_);
     tau_ = sel(begin, sel(below, start + (end - start) / 2, start), tau_);
   }
@@ -649,13 +566,13 @@ class Lanes {
   ROUND_PART void step() {
     const Quiver& q = q_;
     const Arc& a = cur_;
-    const Tolerance tolerance(q, a);
+    const SphereGapLanes<Pack> g = gap_of(q, a);
     const Pack tau = tau_;
     // The Taylor sample at τ (SphereGap::taylor, Quiver::motion).
     const Mask at_start = tau == 0;
-    Pack th = q.phase + q.omega * tau, sn, cs;
+    Pack th = q.phase + q.omega * tau;
     Mask fast;
-    sin_cos(th, sn, cs, fast);
+    auto [sn, cs] = sin_cos(th, fast);
     handed_back_ |= searching_ & ~at_start & ~fast;
     searching_ &= at_start | fast;
     th = sel(at_start, q.phase, th), sn = sel(at_start, q.sin_phase, sn), cs = sel(at_start, q.cos_phase, cs);
@@ -664,10 +581,8 @@ class Lanes {
     const Pack vx = sel(at_start, q.v0x, q.ux + q.amp_v_x * sn), vy = sel(at_start, q.v0y, q.uy + q.amp_v_y * sn);
     const Pack ax = q.accel_x * cs, ay = q.accel_y * cs;
     const Pack px = x - a.cx, py = y - a.cy;
-    const Pack f = a.sign * ((px * px + py * py) - a.r * a.r);
-    const Pack df = 2 * a.sign * (px * vx + py * vy);
-    const Pack d2f = 2 * a.sign * ((vx * vx + vy * vy) + (px * ax + py * ay));
-    const Pack tol_tau = tolerance(tau), tol = 2 * tol_tau * (a.r - tol_tau);
+    const TaylorLanes<Pack> p = taylor<PackLanes>(g, px * px + py * py, px * vx + py * vy, vx * vx + vy * vy, px * ax + py * ay);
+    const Pack &f = p.f, &df = p.df, tol = band<PackLanes>(g, tau);
 
     // At the wall to rounding: the polished root, if it is in the span.
     const Mask band = searching_ & (abs(f) <= tol);
@@ -677,8 +592,7 @@ class Lanes {
     if (any(band & rising)) {  // (rare: most roots are found by a certain step, below)
       never = band & rising & ~a.within_span(x, y);
       root = band & rising & ~never;
-      const Pack clamped = sel(f < -tol, -tol, sel(tol < f, tol, f));
-      found = max(splat(0.0), tau - clamped / df);
+      found = polished_root<PackLanes>(tau, f, df, tol);
     }
 
     // Otherwise the bracket shrinks, and a Halley step (or bisection) gives the next τ.
@@ -688,21 +602,15 @@ class Lanes {
     lo_ = sel(moving & neg, tau, lo_);
     hi_ = sel(moving & ~neg, tau, hi_);
     bracketed_ |= moving & ~neg;
-    const Pack halley = 2 * df * df - f * d2f;
-    Pack next = sel(rising & (halley > 0), tau - 2 * f * df / halley, lo_);
-    next = sel((next > lo_) & (next < hi_), next, sel(bracketed_, lo_ + (hi_ - lo_) / 2, hi_));
+    const Pack next = halley_next<PackLanes>(p, tau, lo_, hi_, bracketed_);
     undecided |= moving & (next == tau);
     Mask stepping = moving & (next != tau);
     // certainly_below: the next τ is the root without a sample there.
-    const Pack h = next - tau;
-    const Pack model = f + h * (df + h / 2 * d2f);
-    const Pack rounding = 8 * eps * (abs(f) + abs(h * df) + abs(h * h * d2f));
-    const Pack level = 2 * a.r * (tolerance(next) - a.slack);
     const Pack th_next = q.phase + q.omega * next, shift = th_next - th;
-    const Mask landed = stepping & (abs(model) + jerk_ * abs(h * h * h) * 0x1.5555555555556p-3 + rounding <= level) & (abs(shift) <= 0.05);
+    const Mask landed =
+        stepping & certainly_below<PackLanes>(p, next - tau, jerk_, rounding<PackLanes>(g, next)) & (abs(shift) <= 0.05);
     if (any(landed)) {
-      Pack sn_next, cs_next;
-      shifted(sn, cs, shift, sn_next, cs_next);
+      const auto [sn_next, cs_next] = shifted<PackLanes>(SinCos<Pack>{sn, cs}, shift);
       const Mask in = a.within_span((q.g0x + q.ux * next) - q.amp_x_x * cs_next, (q.g0y + q.uy * next) - q.amp_x_y * cs_next);
       never |= landed & ~in;
       root |= landed & in;

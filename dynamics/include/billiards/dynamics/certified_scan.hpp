@@ -13,6 +13,7 @@
 #pragma once
 
 #include "billiards/dynamics/state.hpp"
+#include "billiards/dynamics/straight_exit.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -35,14 +36,13 @@ struct Sample {
   V x;         // position
 };
 
+#include "billiards/dynamics/driven_exit-inl.hpp"
+
 /// The collision time returned for a sample p at τ within the rounding band (|f| ≤ tol, f' > 0):
-/// one Newton step polishes the root from |f| ≤ tol (rounding of the walls, ~1e-13) to the
-/// rounding of f itself, so the collision time does not depend on where the search happened to
-/// enter the band; the step stays inside that band.
+/// driven_exit-inl.hpp's polished_root.
 template <class Real, class S>
 Real polished_root(const Real& tau, const S& p, const Real& tol) {
-  using std::max;
-  return max(Real(0), Real(tau - std::clamp(p.f, Real(-tol), tol) / p.df));
+  return polished_root<ScalarLanes<Real>>(tau, p.f, p.df, tol);
 }
 
 /// First τ in [0, tau_end] at which f crosses zero upward at a point in the wall's span.
@@ -264,32 +264,23 @@ Real margin_time(const Real& horizon, Bound bound) {
   return horizon < never ? horizon : bound();
 }
 
-/// Clips the window [start, end] to [0, horizon] into out[n]; returns the new count.
+/// Clips the window [start, end] to [0, horizon] (driven_exit-inl.hpp's clip_window) into
+/// out[n]; returns the new count.
 template <class Real>
-int clip_window(int n, Window<Real>* out, const Real& start, const Real& end, const Real& margin, bool below,
-                const Real& horizon) {
-  using std::max;
-  using std::min;
-  if (end < 0 || start > horizon) return n;
-  out[n] = {max(start, Real(0)), min(end, horizon), margin, -1, below && start > 0};
+int append_window(int n, Window<Real>* out, const Real& start, const Real& end, const Real& margin, bool below,
+                  const Real& horizon) {
+  return append_window(n, out, clip_window<ScalarLanes<Real>>(true, start, end, margin, below, horizon));
+}
+/// The window w into out[n] if it is open; returns the new count.
+template <class Real>
+int append_window(int n, Window<Real>* out, const WindowLanes<Real, bool>& w) {
+  if (!w.open) return n;
+  out[n] = {w.start, w.end, w.margin, -1, w.below};
   return n + 1;
 }
 
-
 /// A root search that could not decide (see `monotone_crossing`).
 inline constexpr double undecided = -1;
-
-/// Is |f(τ + h)| certainly below `level`, h a step of the root search from the sample p at τ?
-/// Then the sample at τ + h, which would cost a sine and a cosine, is not needed: f(τ + h) lies
-/// within J|h|³/6 of the quadratic model f + f'h + f''h²/2 (J bounds |f'''|), and after a
-/// Halley step close to the root both are at the rounding of f.
-template <class S, class Real>
-bool certainly_below(const S& p, const Real& h, const Real& jerk, const Real& level) {
-  using std::abs;
-  const Real model = p.f + h * (p.df + h / 2 * p.d2f);
-  const Real rounding = 8 * eps<Real> * (abs(p.f) + abs(h * p.df) + abs(h * h * p.d2f));
-  return abs(model) + jerk * abs(h * h * h) / 6 + rounding <= level;
-}
 
 /// The collision in a window w where f' > 0 throughout (slope_sign = +1): f crosses zero there
 /// at most once, so Halley's iteration kept inside a bracket finds it without any risk of
@@ -305,6 +296,7 @@ bool certainly_below(const S& p, const Real& h, const Real& jerk, const Real& le
 template <class Gap, class InSpan, class Real, class Mark>
 Real monotone_crossing(const Gap& g, InSpan in_span, const Window<Real>& w, Mark& mark) {
   using std::abs;
+  using L = ScalarLanes<Real>;
   const Real start = w.start, end = w.end;
   Real lo = start, hi = end;  // f(lo) < 0; f(hi) > 0 once `bracketed`
   bool bracketed = false;
@@ -328,11 +320,10 @@ Real monotone_crossing(const Gap& g, InSpan in_span, const Window<Real>& w, Mark
       hi = tau;
       bracketed = true;
     }
-    const Real halley = 2 * p.df * p.df - p.f * p.d2f;
-    Real next = p.df > 0 && halley > 0 ? Real(tau - 2 * p.f * p.df / halley) : lo;
-    if (!(next > lo && next < hi)) next = bracketed ? Real(lo + (hi - lo) / 2) : hi;  // hi = end until bracketed
+    const TaylorLanes<Real> t{p.f, p.df, p.d2f};
+    const Real next = halley_next<L>(t, tau, lo, hi, bracketed);
     if (next == tau) return undecided;
-    if (certainly_below(p, Real(next - tau), jerk, g.rounding(next))) {
+    if (certainly_below<L>(t, Real(next - tau), jerk, g.rounding(next))) {
       decltype(p.x) x;
       Mark at;
       if (g.q.shifted_to(p.mark, next, x, at)) {

@@ -115,6 +115,10 @@ struct Quiver {
     rounding_rate = creeping ? speed : speed_bound;
   }
   V guide(const Real& tau) const { return g0 + u * tau; }
+  /// Its numbers as driven_exit-inl.hpp reads them (in place).
+  scan::GuideLanes<const Real&> lanes() const {
+    return {uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, flight.omega};
+  }
   /// Bounds along a unit vector n (a flat wall's normal): |n·F|/m on the second derivative of
   /// n·x, and |n·F|/(mω), |n·F|/(mω²) on the deviation of n·v and n·x from the guide's.
   struct Along {

@@ -20,16 +20,6 @@ template <class Real>
 RayLanes<const Real&> ray_lanes(const BasicState<Real, 2>& s) {
   return {s.x.x(), s.x.y(), s.v.x(), s.v.y(), s.t, s.v.squaredNorm()};
 }
-template <class Real>
-ArcLanes<const Real&, bool> arc_lanes(const BasicArcWall<Real>& w) {
-  return {w.center.x(), w.center.y(), w.radius, w.radius2, w.near, w.span_tol, w.from.x(), w.from.y(),
-          w.to.x(),     w.to.y(),     w.focusing, w.full, w.ccw_extent <= geometry::pi};
-}
-template <class Real>
-SegmentLanes<const Real&> segment_lanes(const BasicSegmentWall<Real>& w) {
-  return {w.a.x(), w.a.y(), w.normal.x(), w.normal.y(), w.dir.x(), w.dir.y(), w.slack, w.span_tol};
-}
-
 template <class Real, int Dim>
 inline Real BasicFreeFlight<Real, Dim>::exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const
   requires(Dim == 2) {

@@ -32,8 +32,8 @@ struct Phase {
 };
 /// a − b, unnormalized (PhaseSample's shift from a sampled phase to the precise one).
 inline Phase operator-(const Phase& a, const Phase& b) {
-  const auto [s, e] = detail::two_sum(a.hi, -b.hi);
-  return {s, e + (a.lo - b.lo)};
+  const auto d = detail::phase_difference<double>({a.hi, a.lo}, {b.hi, b.lo});
+  return {d.hi, d.lo};
 }
 
 /// The phase's type for a flight in Real: Phase for double, long double for long double, the
@@ -48,22 +48,13 @@ namespace detail {
 Phase reduce_phase_mpfr(const Phase& theta);
 }  // namespace detail
 
-/// θ reduced to [0, 2π) (to rounding: a result within an ulp of 2π may stay there), within
-/// 1e-23 rad of the exact remainder of hi + lo below 2²⁶·2π: θ − k·2π with 2π = C1 + C2 + C3
-/// (phase_constants.hpp), k·C1 and k·C2 exact, and θ.hi − k·C1 exact (both are multiples of
-/// θ.hi's ulp).  k, truncated, may be off by one beside a multiple of 2π: the reduction is then
-/// made again with the next k.  Beyond, and for non-finite θ, MPFR.
+/// θ reduced to [0, 2π) (to rounding), within 1e-23 rad of the exact remainder of hi + lo
+/// below phase_constants::fast_limit (drive_phase-inl.hpp's three-part reduction); beyond, and for
+/// non-finite θ, MPFR.
 inline Phase reduce_phase(const Phase& theta) {
-  using namespace phase_constants;
-  if (!(std::abs(theta.hi) < fast_limit)) return detail::reduce_phase_mpfr(theta);
-  auto minus_turns = [&theta](double k) {
-    const auto [s, e] = detail::two_sum(theta.hi - k * C1, -(k * C2));
-    const auto [hi, lo] = detail::fast_two_sum(s, e + (theta.lo - k * C3));
-    return Phase(hi, lo);
-  };
-  const double k = double(static_cast<long long>(theta.hi * inv_two_pi));
-  const Phase r = minus_turns(k);
-  return r.hi < 0 ? minus_turns(k - 1) : r.hi >= two_pi ? minus_turns(k + 1) : r;
+  if (!(std::abs(theta.hi) < phase_constants::fast_limit)) return detail::reduce_phase_mpfr(theta);
+  const auto r = detail::reduce_phase_below_limit<detail::Doubles>({theta.hi, theta.lo});
+  return {r.hi, r.lo};
 }
 
 /// θ reduced to [0, 2π) in long double (the flights in long double) and in MPFR.  In long
@@ -92,9 +83,8 @@ P reduce_phase(P theta) {
 /// θ + ω τ, not reduced (set_phase reduces it), exact in Phase: ω τ as its rounding and its
 /// exact error.  A flight of 10⁸ periods (as a particle nearly at rest can make) has ω τ ~ 10⁹.
 inline Phase advance_phase(const Phase& theta, double omega, double tau) {
-  const auto [p, e] = detail::two_prod(omega, tau);
-  const auto [s, t] = detail::two_sum(theta.hi, p);
-  return {s, t + (theta.lo + e)};
+  const auto r = detail::advance_phase<detail::Doubles>({theta.hi, theta.lo}, omega, tau);
+  return {r.hi, r.lo};
 }
 
 /// The same in long double, to its rounding even when ωτ is 10¹⁰: ωτ in long double would keep
@@ -124,48 +114,11 @@ std::pair<V, V> drive_amplitudes(const V& accel, const Real& omega) {
   return {V(amp_v * inv), amp_v};
 }
 
-namespace detail {
-
-/// fdlibm's kernels (__kernel_sin, __kernel_cos): sin and cos on |x| ≤ π/4 to below one ulp.
-inline double kernel_sin(double x) {
-  const double z = x * x;
-  const double r = 8.33333333332248946124e-03 +
-                   z * (-1.98412698298579493134e-04 +
-                        z * (2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)));
-  return x + z * x * (-1.66666666666666324348e-01 + z * r);
-}
-inline double kernel_cos(double x) {
-  const double z = x * x;
-  const double r =
-      z * (4.16666666666666019037e-02 +
-           z * (-1.38888888888741095749e-03 +
-                z * (2.48015872894767294178e-05 +
-                     z * (-2.75573143513906633035e-07 + z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
-  const double hz = 0.5 * z, w = 1.0 - hz;
-  return w + (((1.0 - w) - hz) + z * r);
-}
-
-/// sin and cos of qπ/2 + x from s = sin x and c = cos x: swapped when q is odd, negated by
-/// the quadrant.  Selected with bit masks, not branches: q is as good as random from one sample
-/// to the next, and gcc compiled the conditional expressions into three jumps that the
-/// processor mispredicted half the time.
-inline std::pair<double, double> quadrant(long q, double s, double c) {
-  const auto sb = std::bit_cast<std::uint64_t>(s), cb = std::bit_cast<std::uint64_t>(c);
-  const std::uint64_t odd = -(std::uint64_t(q) & 1);  // all ones when q is odd
-  const std::uint64_t sq = (sb & ~odd) | (cb & odd), cq = (cb & ~odd) | (sb & odd);
-  // (Bit 1 of q, and of q + 1, moved to the sign bit.)
-  return {std::bit_cast<double>(sq ^ ((std::uint64_t(q) & 2) << 62)),
-          std::bit_cast<double>(cq ^ ((std::uint64_t(q + 1) & 2) << 62))};
-}
-
-}  // namespace detail
-
 /// sin θ and cos θ of a drive's phase, the one transcendental function of a driven flight's
-/// hot path (each sample of a root search).  For double and |θ| < 2¹⁹π: θ = kπ/2 + x with
-/// fdlibm's two-part π/2 (the first part has 33 bits, so kπ/2 is exact for k < 2²⁰), and the
-/// kernels above on x; the absolute error stays within ~1.5 ulp of 1 (tested against MPFR).
-/// A third of the cost of glibc's sincos, which reduces through a table (measured with
-/// callgrind: 142 instructions a call on a driven clover).  Other types and larger θ: std.
+/// hot path (each sample of a root search).  For double and |θ| < 2¹⁹π, fdlibm's reduction and
+/// kernels (drive_phase-inl.hpp): a third of the cost of glibc's sincos, which reduces through a
+/// table (measured with callgrind: 142 instructions a call on a driven clover).  Other types
+/// and larger θ: std.
 template <class Real>
 std::pair<Real, Real> sin_cos(const Real& theta) {
   using std::abs;
@@ -173,11 +126,8 @@ std::pair<Real, Real> sin_cos(const Real& theta) {
   using std::sin;
   if constexpr (std::is_same_v<Real, double>) {
     if (abs(theta) < 0x1p19 * 3.14159265358979311600) {
-      constexpr double two_over_pi = 6.36619772367581382433e-01, pio2_1 = 1.57079632673412561417e+00,
-                       pio2_1t = 6.07710050650619224932e-11;
-      const double k = (theta * two_over_pi + 0x1.8p52) - 0x1.8p52;  // (rounded to nearest, without SSE4.1)
-      const double x = (theta - k * pio2_1) - k * pio2_1t;
-      return detail::quadrant(long(k), detail::kernel_sin(x), detail::kernel_cos(x));
+      const auto r = detail::sin_cos_below_limit<detail::Doubles>(theta);
+      return {r.sin, r.cos};
     }
   }
   return {sin(theta), cos(theta)};
@@ -201,17 +151,10 @@ struct PhaseSample {
   /// sin and cos of `precise` (θ + h, near θ): which corrects the last step of a root search
   /// and the rounding of θ in Real.
   std::pair<Real, Real> at(const PhaseOf<Real>& precise) const { return shifted(Real(precise - PhaseOf<Real>(theta))); }
-  /// sin and cos of θ + h, |h| ≤ h_max, by the angle-sum formulas, with sin h and cos h − 1 from
-  /// their Taylor series (remainders below h⁹/9! = 5.4e-18): a fifth of a sine and cosine.
-  /// The series' ratios are multiplied by their reciprocals, not divided: six divisions sat on
-  /// the way from a root to the hit's state (the reciprocals' rounding, ~1e-16 of terms below
-  /// z/6 ≈ 4e-4, is far below the remainder).
+  /// sin and cos of θ + h, |h| ≤ h_max, by the angle-sum formulas (drive_phase-inl.hpp).
   std::pair<Real, Real> shifted(const Real& h) const {
-    const Real z = h * h;
-    const Real sin_h = h * (1 - z * Real(Real(1) / 6) * (1 - z * Real(Real(1) / 20) * (1 - z * Real(Real(1) / 42))));
-    const Real cos_h_1 =
-        -z * Real(0.5) * (1 - z * Real(Real(1) / 12) * (1 - z * Real(Real(1) / 30) * (1 - z * Real(Real(1) / 56))));
-    return {sin + (sin * cos_h_1 + cos * sin_h), cos + (cos * cos_h_1 - sin * sin_h)};
+    const auto r = detail::shifted<ScalarLanes<Real>>(detail::SinCos<Real>{sin, cos}, h);
+    return {r.sin, r.cos};
   }
 };
 

@@ -46,7 +46,8 @@ struct BasicClock<double> {
   /// Adds a flight's time, exactly to the 106 bits of hi + lo.
   void add(double dt) {
     const auto [s, e] = detail::two_sum(hi, dt);
-    std::tie(hi, lo) = detail::fast_two_sum(s, e + lo);
+    const auto sum = detail::fast_two_sum(s, e + lo);
+    hi = sum.hi, lo = sum.lo;
   }
   /// hi + lo + τ and T − (hi + lo), each rounded once (to within an ulp); `never` stays never.
   double after(double tau) const {

@@ -50,11 +50,11 @@ template <class L, class FW, class WT>
                                                               const typename L::Num& px, const typename L::Num& py) {
   using Num = typename L::Num;
   const Num ux = px - w.cx, uy = py - w.cy, tol = w.span_tol;
-  return l.choose(w.full, [&] { return L::splat_truth(true); }, [&] {
-    return l.choose(w.half, [&] {  // up to half a circle: within both ends' half-planes
+  return l.choose(w.full, [&]() __attribute__((always_inline)) { return L::splat_truth(true); }, [&]() __attribute__((always_inline)) {
+    return l.choose(w.half, [&]() __attribute__((always_inline)) {  // up to half a circle: within both ends' half-planes
       const Num neg_tol = L::neg(tol);
       return l.both(w.from_x * uy - w.from_y * ux >= neg_tol, ux * w.to_y - uy * w.to_x >= neg_tol);
-    }, [&] {  // more: not strictly within the complementary arc (< π)
+    }, [&]() __attribute__((always_inline)) {  // more: not strictly within the complementary arc (< π)
       return l.negate(l.both(w.to_x * uy - w.to_y * ux > tol, ux * w.from_y - uy * w.from_x > tol));
     });
   });

@@ -132,12 +132,12 @@ struct PlaneGap {
   int windows(const Real& horizon, Window<Real>* out) const {
     using std::abs;
     using std::min;
-    if (nu == 0) return clip_window(0, out, Real(0), horizon, Real(B + tolerance(horizon)), false, horizon);
+    if (nu == 0) return append_window(0, out, Real(0), horizon, Real(B + tolerance(horizon)), false, horizon);
     const Real m = B + tolerance(margin_time(horizon, [&] {
                      return window_horizon(Real(0), Real(abs(g_off) + 2 * B), tol0, tol1, abs(nu));
                    }));
     const Real inv_nu = 1 / nu, from = (-2 * m - g_off) * inv_nu, to = (2 * m - g_off) * inv_nu;  // the guide at ∓2m
-    return nu > 0 ? clip_window(0, out, from, to, m, true, horizon) : clip_window(0, out, to, from, m, false, horizon);
+    return nu > 0 ? append_window(0, out, from, to, m, true, horizon) : append_window(0, out, to, from, m, false, horizon);
   }
   /// +1 when f' > 0 throughout the window (f then crosses zero there at most once, upward), −1
   /// when f' < 0 (no collision), 0 when the bounds cannot tell: f' = nu + n·(F/mω) sin θ.
@@ -149,26 +149,28 @@ struct PlaneGap {
 
 /// The same for the circle (2-D) or sphere (3-D) of centre c and radius r, the region inside it
 /// when `focusing`: f = ±(|x − c| − r), where |x − c| lies within δ of the guide's distance
-/// from c.
+/// from c.  Its numbers along the guide, windows, sign of f' and Taylor samples are
+/// driven_exit-inl.hpp's, which the lock-step kernel runs too.
 template <class Q, class V>
 struct SphereGap {
   using Real = typename Q::Real;
+  using L = ScalarLanes<Real>;
   const Q& q;
   V c;
-  Real r, sign, slack;
-  Real tol0, tol1;  // the rounding level of f at τ is tol0 + tol1 τ
+  SphereGapLanes<Real> g;
 
-  SphereGap(const Q& q_, const V& c_, const Real& r_, bool focusing, const Real& slack_)
-      : q(q_), c(c_), r(r_), sign(focusing ? 1 : -1), slack(slack_),
-        // (|x − c|₁ + r bounds |x − c| + r without a square root.)
-        tol0(slack + 8 * eps<Real> * ((q.s.x - c).template lpNorm<1>() + r + q.delta)),
-        tol1(8 * eps<Real> * q.rounding_rate) {}
-  Real tolerance(const Real& tau) const { return tol0 + tol1 * tau; }
+  SphereGap(const Q& q_, const V& c_, const Real& r, bool focusing, const Real& slack) : q(q_), c(c_) {
+    const V q0 = q.g0 - c;
+    g = sphere_gap<L>(q.lanes(), r, Real(focusing ? 1 : -1), slack, q0.dot(q.u), q0.squaredNorm(),
+                      Real(q0.template lpNorm<1>() * q.u.template lpNorm<1>()), (q.s.x - c).template lpNorm<1>(),
+                      q.rounding_rate);
+  }
+  Real tolerance(const Real& tau) const { return scan::tolerance<L>(g, tau); }
   Sample<Real, V> sample(const Real& tau) const {
     const auto [x, v] = q.at(tau);
     const V p = x - c;
-    const Real rho = p.norm(), f = sign * (rho - r);
-    if (rho < r / 2) {
+    const Real rho = p.norm(), f = g.sign * (rho - g.r);
+    if (rho < g.r / 2) {
       // Nearer the centre than the wall, f'' is unbounded (at the centre p̂·v is 0/0), but
       // |f'| ≤ |v|: the Lipschitz bound |f(τ + s) − f(τ)| ≤ |v| s + A s²/2, as a sample moving
       // towards zero at |v| with M = A, steps through safely, ~|f|/|v| at a time.
@@ -177,101 +179,43 @@ struct SphereGap {
     }
     // d²|p|/dt² = (|v|² − (p̂·v)²)/|p| + p̂·a ≤ V²/|p| + A; valid while |p| ≥ ρ/2.
     const Real Vb = q.speed_bound;
-    return {f, sign * p.dot(v) / rho, 2 * Vb * Vb / rho + q.accel_norm, rho / (2 * Vb), x};
+    return {f, g.sign * p.dot(v) / rho, 2 * Vb * Vb / rho + q.accel_norm, rho / (2 * Vb), x};
   }
-  /// ±(|p|² − r²), free of square roots and divisions (which lengthened each iteration of the
-  /// root search by a third): |p|² − r² = (|p| − r)(|p| + r), and |p| − r ≤ tol is certain when
-  /// ||p|² − r²| ≤ 2 tol (r − tol).
+  /// ±(|p|² − r²) and its derivatives (|p| − r ≤ tol is certain when ||p|² − r²| ≤ `band`).
   Taylor<Real, V, typename Q::Mark> taylor(const Real& tau) const {
     const auto m = q.motion(tau);
     const V p = m.x - c;
-    return {sign * (p.squaredNorm() - r * r), 2 * sign * p.dot(m.v), 2 * sign * (m.v.squaredNorm() + p.dot(m.a)), m.x,
-            band(tau), {m.th, m.sin_th, m.cos_th}};
+    const auto t = scan::taylor<L>(g, p.squaredNorm(), p.dot(m.v), m.v.squaredNorm(), p.dot(m.a));
+    return {t.f, t.df, t.d2f, m.x, band(tau), {m.th, m.sin_th, m.cos_th}};
   }
-  Real band(const Real& tau) const {
-    const Real tol = tolerance(tau);
-    return 2 * tol * (r - tol);
-  }
-  Real rounding(const Real& tau) const { return 2 * r * (tolerance(tau) - slack); }
-  /// A bound on the third derivative of ±(|p|² − r²), 2(3 v·a + p·ȧ), in the window w, where
-  /// |p| ≤ r + 2m + δ, |v| ≤ V, |a| ≤ A and |ȧ| ≤ Aω.
-  Real jerk_bound(const Window<Real>& w) const {
-    return 2 * q.accel_norm * (3 * q.speed_bound + (r + 2 * w.margin + q.delta) * q.turn_rate());
-  }
+  Real band(const Real& tau) const { return scan::band<L>(g, tau); }
+  Real rounding(const Real& tau) const { return scan::rounding<L>(g, tau); }
+  Real jerk_bound(const Window<Real>& w) const { return scan::jerk_bound<L>(g, q.lanes(), w.margin); }
   Real window_start(const Real& tau) const {
     using std::max;
-    const V g = q.guide(tau) - c;
+    const V gd = q.guide(tau) - c;
     const Real margin = q.delta + tolerance(tau);
-    return g.squaredNorm() < r * r ? reach_radius(tau, g, q.u, max(Real(0), Real(r - margin)), true)
-                                   : reach_radius(tau, g, q.u, Real(r + margin), false);
+    return gd.squaredNorm() < g.r * g.r ? reach_radius(tau, gd, q.u, max(Real(0), Real(g.r - margin)), true)
+                                        : reach_radius(tau, gd, q.u, Real(g.r + margin), false);
   }
   Real window_end(const Real& start, const Real& tau_end) const {
     using std::max;
     using std::min;
-    const V g = q.guide(start) - c;
+    const V gd = q.guide(start) - c;
     const Real margin = q.delta + tolerance(start);
-    return min({reach_radius(start, g, q.u, Real(r + 2 * margin), true),
-                reach_radius(start, g, q.u, max(Real(0), Real(r - 2 * margin)), false), tau_end});
+    return min({reach_radius(start, gd, q.u, Real(g.r + 2 * margin), true),
+                reach_radius(start, gd, q.u, max(Real(0), Real(g.r - 2 * margin)), false), tau_end});
   }
-  /// The windows until `horizon` into out; returns their number.  The guide's distance from c
-  /// is convex in τ: the guide is within r ± 2m of c in one interval, or in two when it
-  /// passes inside r − 2m.
+  /// The windows until `horizon` into out; returns their number.  A guide standing still has
+  /// one, the whole flight.
   int windows(const Real& horizon, Window<Real>* out) const {
-    using std::max;
-    using std::min;
-    using std::sqrt;
-    const V q0 = q.g0 - c;
-    const Real b = q0.dot(q.u), cc = q0.squaredNorm(), uu = q.uu;
-    if (!(uu > 0)) return clip_window(0, out, Real(0), horizon, Real(q.delta + tolerance(horizon)), false, horizon);
-    // Most walls are out of reach: the guide misses the sphere, or moves away from it, even
-    // with the margin at the horizon (no smaller than any margin below).
-    const Real reach = r + 2 * (q.delta + tolerance(horizon)), k_reach = cc - reach * reach;
-    if (k_reach > 0 && (b >= 0 || b * b < uu * k_reach)) return 0;
-    const Real m = q.delta + tolerance(margin_time(horizon, [&] {
-                     return window_horizon(Real(-b * q.inv_uu), Real(r + 2 * q.delta), tol0, tol1, q.speed);
-                   }));
-    // Times at which the guide is at distance ρ from c: the roots of uu τ² + 2bτ + cc − ρ²,
-    // each from its stable form; false when it never is.
-    auto at_distance = [&](const Real& rho, Real& t1, Real& t2) {
-      const Real k = cc - rho * rho, D = b * b - uu * k;
-      if (!(D >= 0)) return false;
-      const Real root = sqrt(D);
-      if (b <= 0) {
-        t2 = (root - b) * q.inv_uu;
-        t1 = root - b > 0 ? Real(k / (root - b)) : Real(0);  // (0/0 for a tangent at τ = 0)
-      } else {
-        t1 = -(b + root) * q.inv_uu;
-        t2 = -k / (b + root);
-      }
-      return true;
-    };
-    Real t1, t2, t3, t4;
-    if (!at_distance(Real(r + 2 * m), t1, t2)) return 0;
-    const bool outside_is_below = sign < 0;  // beyond a dispersing circle's wall is its inside
-    const Real inner = r - 2 * m;
-    if (!(inner > 0) || !at_distance(inner, t3, t4))
-      return clip_window(0, out, t1, t2, m, outside_is_below, horizon);
-    const int n = clip_window(0, out, t1, t3, m, outside_is_below, horizon);
-    return clip_window(n, out, t4, t2, m, !outside_is_below, horizon);
+    if (!(q.uu > 0)) return append_window(0, out, Real(0), horizon, Real(q.delta + tolerance(horizon)), false, horizon);
+    WindowLanes<Real, bool> first, second;
+    scan::windows<L>(g, q.lanes(), horizon, true, first, second);
+    return append_window(append_window(0, out, first), out, second);
   }
-  /// f' = ±p̂·v.  In the window the guide q stays within 2 margins m of the sphere, p = q + o
-  /// with |o| ≤ δ, and v = u + w with |w| ≤ |F|/(mω); so |p̂·v − q̂·u| ≤ |F|/(mω) + 2δ V/|p|,
-  /// and q̂·u = (q·u)/|q|, whose numerator grows linearly in τ, is bounded by its values at the
-  /// window's ends.
   int slope_sign(const Window<Real>& w) const {
-    using std::isfinite;
-    const Real m2 = 2 * w.margin, inner = r - m2, outer = r + m2;
-    if (!isfinite(w.end) || !(inner - q.delta > 0)) return 0;
-    const V q0 = q.g0 - c;
-    const Real qu0 = q0.dot(q.u);
-    const Real qs = qu0 + q.uu * w.start, qe = qu0 + q.uu * w.end;
-    const Real wobble = q.wobble + 2 * q.delta * q.speed_bound / (inner - q.delta);
-    // q̂·u > wobble throughout (outward) when qs/|q| > wobble, as |q| ≤ outer; < −wobble
-    // (inward) likewise at the end; compared without dividing, with the rounding of q·u.
-    const Real threshold = wobble * outer + 16 * eps<Real> * (q0.template lpNorm<1>() * q.u.template lpNorm<1>() +
-                                                               q.uu * w.end + q.speed_bound * outer);
-    const bool outward = qs > threshold, inward = qe < -threshold;
-    return sign > 0 ? (outward ? 1 : inward ? -1 : 0) : (inward ? 1 : outward ? -1 : 0);
+    return int(scan::slope_sign<L>(g, q.lanes(), w.start, w.end, w.margin));
   }
 };
 
@@ -514,17 +458,11 @@ struct BasicArcWall {
   }
   template <class Q>
   scan::SphereGap<Q, V> gap_along(const Q& q) const { return {q, center, radius, focusing, slack}; }
-  /// As for segments; the span of an arc longer than a half circle is a union of half-planes.
+  /// As for segments; the span of an arc longer than a half circle is a union of half-planes
+  /// (driven_exit-inl.hpp).
   bool may_meet_span(const V& p, const V& q, const Real& pad) const {
-    using std::max;
-    using std::min;
-    if (full) return true;
     const V a = p - center, b = q - center;
-    // (|·|₁ ≥ |·| bounds the rounding of the cross products without a square root.)
-    const Real margin = radius * (slack + pad) + 16 * scan::eps<Real> * radius * (a.template lpNorm<1>() + b.template lpNorm<1>());
-    if (ccw_extent <= geometry::pi)
-      return max(cross(from, a), cross(from, b)) >= -margin && max(cross(a, to), cross(b, to)) >= -margin;
-    return !(min(cross(to, a), cross(to, b)) > margin && min(cross(a, from), cross(b, from)) > margin);
+    return scan::may_meet_span<ScalarLanes<Real>>(arc_lanes(*this), slack, pad, a.x(), a.y(), b.x(), b.y());
   }
   /// Signed curvature seen from the region (geometry::Arc::curvature).
   Real curvature_at(const V&) const { return (focusing ? Real(1) : Real(-1)) / radius; }
@@ -554,6 +492,19 @@ struct BasicArcWall {
     return n;
   }
 };
+
+/// The numbers of segments and arcs as straight_exit-inl.hpp and driven_exit-inl.hpp read them
+/// (read in place).
+template <class Real>
+ArcLanes<const Real&, bool> arc_lanes(const BasicArcWall<Real>& w) {
+  return {w.center.x(), w.center.y(), w.radius, w.radius2, w.near, w.span_tol, w.from.x(), w.from.y(),
+          w.to.x(),     w.to.y(),     w.focusing, w.full, w.ccw_extent <= geometry::pi};
+}
+template <class Real>
+SegmentLanes<const Real&> segment_lanes(const BasicSegmentWall<Real>& w) {
+  return {w.a.x(), w.a.y(), w.normal.x(), w.normal.y(), w.dir.x(), w.dir.y(), w.slack, w.span_tol};
+}
+
 
 /// An elliptic arc, seen through the affine map u = L (x − c) that takes its ellipse to the
 /// unit circle (L = diag(1/a, 1/b) R(−angle)).  There it is the circular arc `unit` (centre 0,
