@@ -16,8 +16,10 @@ Kernel chosen_kernel() {
 
 LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flight, lockstep::Kernel kernel)
     : table_(&table), flight_(&flight), kernel_(kernel) {
+  const auto& segments = table.segments();
   const auto& arcs = table.arcs();
-  usable_ = kernel && !arcs.empty() && table.wall_count() == arcs.size() && arcs.size() <= std::size_t(lockstep::max_arcs);
+  const std::size_t count = segments.size() + arcs.size();
+  usable_ = kernel && count > 0 && table.wall_count() == count && count <= std::size_t(lockstep::max_walls);
   if (!usable_) return;
   // The drive's numbers as every flight's Quiver computes them.
   DrivenState rest;
@@ -28,13 +30,22 @@ LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flig
   const auto& classes = table.classes();
   cells_ = {classes.origin.x(), classes.origin.y(), classes.inverse_cell.x(), classes.inverse_cell.y(),
             classes.nx,         classes.ny,         classes.cell.data()};
-  arcs_.count = int(arcs.size());
-  for (int i = 0; i < lockstep::max_arcs; ++i) {
-    const auto& w = arcs[std::size_t(std::min(i, arcs_.count - 1))];
-    arcs_.cx[i] = w.center.x(), arcs_.cy[i] = w.center.y(), arcs_.r[i] = w.radius, arcs_.sign[i] = w.focusing ? 1 : -1;
-    arcs_.slack[i] = w.slack, arcs_.fx[i] = w.from.x(), arcs_.fy[i] = w.from.y(), arcs_.tx[i] = w.to.x(),
-    arcs_.ty[i] = w.to.y();
-    arcs_.full[i] = w.full ? -1 : 0, arcs_.half[i] = w.ccw_extent <= geometry::pi ? -1 : 0;
+  walls_.count = int(count), walls_.segments = int(segments.size());
+  for (int i = 0; i < lockstep::max_walls; ++i) {
+    const int k = std::min(i, walls_.count - 1);  // (padding: the last wall again)
+    auto& w = walls_;
+    w.arc[i] = k >= w.segments ? -1 : 0;
+    if (k < w.segments) {
+      const auto& g = segments[std::size_t(k)];
+      w.slack[i] = g.slack, w.ax[i] = g.a.x(), w.ay[i] = g.a.y(), w.bx[i] = g.b.x(), w.by[i] = g.b.y();
+      w.nx[i] = g.normal.x(), w.ny[i] = g.normal.y(), w.dir_x[i] = g.dir.x(), w.dir_y[i] = g.dir.y();
+      w.dir_norm[i] = g.dir.norm(), w.span_tol[i] = g.span_tol;
+    } else {
+      const auto& a = arcs[std::size_t(k - w.segments)];
+      w.slack[i] = a.slack, w.cx[i] = a.center.x(), w.cy[i] = a.center.y(), w.r[i] = a.radius;
+      w.sign[i] = a.focusing ? 1 : -1, w.fx[i] = a.from.x(), w.fy[i] = a.from.y(), w.tx[i] = a.to.x(), w.ty[i] = a.to.y();
+      w.full[i] = a.full ? -1 : 0, w.half[i] = a.ccw_extent <= geometry::pi ? -1 : 0;
+    }
   }
 }
 
@@ -53,7 +64,7 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
     in.tau_end[i] = t_end[i] - s.t;
   }
   lockstep::Hits out;
-  if (any) kernel_(arcs_, drive_, cells_, in, out);
+  if (any) kernel_(walls_, drive_, cells_, in, out);
   for (int i = 0; i < n; ++i) {
     const DrivenState& s = *states[i];
     if (!in.active[i] || out.handed_back[i]) {
@@ -65,7 +76,8 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
     auto& hit = hits[i] = {};
     hit.t = t_end[i];
     if (out.wall[i] < 0) continue;
-    hit.wall = {wall_kind::arc, out.wall[i]};
+    hit.wall = out.wall[i] < walls_.segments ? WallId{wall_kind::segment, out.wall[i]}
+                                             : WallId{wall_kind::arc, out.wall[i] - walls_.segments};
     hit.midpoint_inside = out.midpoint_inside[i];
     if (out.made[i]) {
       hit.t = out.t[i];

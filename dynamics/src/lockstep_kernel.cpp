@@ -45,7 +45,7 @@ constexpr int W = lanes;
 using D = hn::ScalableTag<double>;       // the target's vector of doubles
 using DI = hn::RebindToSigned<D>;        // and of 64-bit integers
 constexpr int L = int(hn::MaxLanes(D()));
-static_assert(W % L == 0 && L <= max_arcs, "a Pack is whole vectors; a table's arcs fill one or more");
+static_assert(W % L == 0 && L <= max_walls, "a Pack is whole vectors; a table's walls fill one or more");
 constexpr int K = W / L;  // vectors in a Pack
 
 // Every function here is inlined: a Pack passed to a call costs more than most of them (and
@@ -186,11 +186,11 @@ LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_as(const T* x) {
 LANES Pack load(const double* x) { return load_as(x); }
 LANES Mask load_mask(const std::int64_t* x) { return load_as(x); }
 LANES void store(double* x, Pack p) { EACH_VECTOR hn::StoreU(p.v[k], D(), x + k * L); }
-/// A table's field (max_arcs entries, in max_arcs / L vectors) in each group of vectors, for `pick`.
+/// A table's field (max_walls entries, in max_walls / L vectors) in each group of vectors, for `pick`.
 template <class T>
-LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_arcs(const T* x) {
+LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_walls(const T* x) {
   Parts<hn::Vec<hn::Rebind<T, D>>> r;
-  EACH_VECTOR r.v[k] = hn::LoadU(hn::Rebind<T, D>(), x + k * L % max_arcs);
+  EACH_VECTOR r.v[k] = hn::LoadU(hn::Rebind<T, D>(), x + k * L % max_walls);
   return r;
 }
 /// Each lane's values, to be read one by one.
@@ -227,16 +227,16 @@ LANES Pack from_bits(Mask x) { return each<VD>(x, [](VI v) LANES_LAMBDA { return
 /// std::max(a, b) and std::min(a, b), as the scalar code has them: (a < b) ? b : a, (b < a) ? b : a.
 LANES Pack max(Pack a, Pack b) { return sel(a < b, b, a); }
 LANES Pack min(Pack a, Pack b) { return sel(b < a, b, a); }
-/// A table's field (load_arcs) for each lane's wall index (taken modulo max_arcs).
+/// A table's field (load_walls) for each lane's wall index (taken modulo max_walls).
 template <class V>
 LANES Parts<V> pick(Parts<V> table, Mask index) {
   const hn::DFromV<V> d;
   Parts<V> r;
   EACH_VECTOR {
-    const VI i = hn::And(index.v[k], hn::Set(DI(), max_arcs - 1));
+    const VI i = hn::And(index.v[k], hn::Set(DI(), max_walls - 1));
     const auto lane = hn::IndicesFromVec(d, hn::And(i, hn::Set(DI(), L - 1)));
     r.v[k] = hn::TableLookupLanes(table.v[0], lane);
-    for (int j = 1; j < max_arcs / L; ++j)  // (the vector that holds entry i)
+    for (int j = 1; j < max_walls / L; ++j)  // (the vector that holds entry i)
       r.v[k] = hn::IfThenElse(hn::RebindMask(d, hn::Set(DI(), j * L - 1) < i), hn::TableLookupLanes(table.v[j], lane), r.v[k]);
   }
   return r;
@@ -303,34 +303,94 @@ LANES Unevaluated<Pack> reduce_phase(Pack hi, Pack lo, Mask& fast) {
 
 // ---- One wall, lane by lane ------------------------------------------------------------------
 
-/// An arc's fields, for each lane's wall.
-struct Arc {
-  Pack cx, cy, r, sign, slack, fx, fy, tx, ty;
+// The fields of a wall (lockstep::Walls'): its kind and slack, an arc's, a segment's.
+#define ARC_FIELDS(F) F(cx) F(cy) F(r) F(sign) F(fx) F(fy) F(tx) F(ty) F(full) F(half)
+#define SEGMENT_FIELDS(F) F(ax) F(ay) F(bx) F(by) F(nx) F(ny) F(dir_x) F(dir_y) F(dir_norm) F(span_tol)
+// F for the fields of the kinds `arcs` and `segments` (a wall's others are never read: its
+// fields of a kind the table lacks are neither loaded nor moved).
+#define WALL_FIELDS(F, arcs, segments) \
+  F(arc) F(slack);                     \
+  if (arcs) { ARC_FIELDS(F) }          \
+  if (segments) { SEGMENT_FIELDS(F) }
+
+/// The kinds of wall that the lanes that count have: arcs only, segments only, or both.
+enum class Mix { arcs, segments, both };
+constexpr bool has_arcs(Mix m) { return m != Mix::segments; }
+constexpr bool has_segments(Mix m) { return m != Mix::arcs; }
+
+/// A wall's fields for each lane: a segment's or an arc's (`arc`), the other kind's unused.
+struct Wall {
+  Mask arc;
+  Pack slack;
+  Pack cx, cy, r, sign, fx, fy, tx, ty;  // an arc
   Mask full, half;
-  Arc() = default;
-  /// Arc number wall[i] in lane i, from the arcs' fields in lanes (`Arc(arcs)`).
-  Arc(const Arc& all, Mask wall)
-      : cx(pick(all.cx, wall)), cy(pick(all.cy, wall)), r(pick(all.r, wall)), sign(pick(all.sign, wall)),
-        slack(pick(all.slack, wall)), fx(pick(all.fx, wall)), fy(pick(all.fy, wall)), tx(pick(all.tx, wall)),
-        ty(pick(all.ty, wall)), full(pick(all.full, wall)), half(pick(all.half, wall)) {}
-  /// The arcs of a table, one per lane (max_arcs = lanes).
-  explicit Arc(const Arcs& a)
-      : cx(load_arcs(a.cx)), cy(load_arcs(a.cy)), r(load_arcs(a.r)), sign(load_arcs(a.sign)), slack(load_arcs(a.slack)),
-        fx(load_arcs(a.fx)), fy(load_arcs(a.fy)), tx(load_arcs(a.tx)), ty(load_arcs(a.ty)), full(load_arcs(a.full)),
-        half(load_arcs(a.half)) {}
-  Arc(const Arcs& a, int w)
-      : cx(splat(a.cx[w])), cy(splat(a.cy[w])), r(splat(a.r[w])), sign(splat(a.sign[w])), slack(splat(a.slack[w])),
-        fx(splat(a.fx[w])), fy(splat(a.fy[w])), tx(splat(a.tx[w])), ty(splat(a.ty[w])), full(a.full[w] ? ~Mask{} : Mask{}),
-        half(a.half[w] ? ~Mask{} : Mask{}) {}
-  /// As straight_exit-inl.hpp and driven_exit-inl.hpp read it (arc_lanes; the fields they do
-  /// not read for a span test are the circle's own).
-  LANES ArcLanes<Pack, Mask> lanes() const {
+  Pack ax, ay, bx, by, nx, ny, dir_x, dir_y, dir_norm, span_tol;  // a segment
+  Wall() = default;
+  /// Wall number wall[i] in lane i, from the walls' fields in lanes (`Wall(walls, mix)`).
+  LANES Wall(const Wall& all, Mask wall, Mix mix) {
+#define PICK(f) f = pick(all.f, wall);
+    WALL_FIELDS(PICK, has_arcs(mix), has_segments(mix))
+#undef PICK
+  }
+  /// The walls of a table, one per lane (max_walls = lanes).
+  LANES Wall(const Walls& w, Mix mix) {
+#define LOAD(f) f = load_walls(w.f);
+    WALL_FIELDS(LOAD, has_arcs(mix), has_segments(mix))
+#undef LOAD
+  }
+  /// Wall number i in every lane.
+  LANES Wall(const Walls& w, int i) {
+#define SPLAT(f) f = splat_as<std::decay_t<decltype(f.v[0])>>(w.f[i]);
+    WALL_FIELDS(SPLAT, w.arc[i], !w.arc[i])
+#undef SPLAT
+  }
+  /// An arc's fields as straight_exit-inl.hpp and driven_exit-inl.hpp read them (arc_lanes; the
+  /// fields they do not read for a span test are the circle's own).
+  LANES ArcLanes<Pack, Mask> arc_lanes() const {
     const Pack r2 = r * r;
     return {cx, cy, r, r2, r2, slack * r, fx, fy, tx, ty, sign > 0, full, half};
   }
-  /// BasicArcWall::within_span of (x, y).
-  LANES Mask within_span(Pack x, Pack y) const { return ::billiards::dynamics::lockstep::HWY_NAMESPACE::within_span(PackLanes{}, lanes(), x, y); }
+  /// A segment's (segment_lanes).
+  LANES SegmentLanes<Pack> segment_lanes() const { return {ax, ay, nx, ny, dir_x, dir_y, slack, span_tol}; }
 };
+
+/// The fields of a where m, else those of b (the kinds of `mix`).
+LANES Wall select(Mask m, const Wall& a, const Wall& b, Mix mix) {
+  Wall r;
+#define SELECT(f) r.f = sel(m, a.f, b.f);
+  WALL_FIELDS(SELECT, has_arcs(mix), has_segments(mix))
+#undef SELECT
+  return r;
+}
+
+/// The Taylor sample of a where m, else b's.
+LANES TaylorLanes<Pack> sel(Mask m, const TaylorLanes<Pack>& a, const TaylorLanes<Pack>& b) {
+  return {sel(m, a.f, b.f), sel(m, a.df, b.df), sel(m, a.d2f, b.d2f)};
+}
+
+/// The walls' kinds in lanes: by_kind(on_arc, on_segment) is on_arc() where a lane's wall is
+/// an arc, on_segment() where it is a segment; only one of them is computed where every lane
+/// that counts has a wall of one kind (`mix`, a constant: each mix has its own code, with no
+/// branch and no value of the other kind kept in registers).
+template <Mix mix>
+struct Kinds {
+  Mask arc;
+  template <class A, class S>
+  LANES auto by_kind(A on_arc, S on_segment) const {
+    if constexpr (mix == Mix::arcs) return on_arc();
+    else if constexpr (mix == Mix::segments) return on_segment();
+    else return sel(arc, on_arc(), on_segment());
+  }
+};
+
+/// f(Kinds) for the kinds of the walls w of the lanes that `count`, in a table that has both.
+template <class F>
+LANES void with_kinds(const Wall& w, Mask count, F f) {
+  const bool arcs = any(count & w.arc), segments = any(count & ~w.arc);
+  if (!segments) return f(Kinds<Mix::arcs>{w.arc});
+  if (!arcs) return f(Kinds<Mix::segments>{w.arc});
+  f(Kinds<Mix::both>{w.arc});
+}
 
 /// The flights' lanes: Quiver's fields (forced_flight.hpp), computed as its constructor does.
 struct Quiver {
@@ -354,67 +414,124 @@ struct Quiver {
     creeping = speed * 6.28318530717958647692 < delta * omega;
     rounding_rate = sel(creeping, speed, speed_bound);
   }
-  LANES GuideLanes<Pack> lanes() const { return {uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, omega}; }
+  LANES GuideLanes<Pack> lanes() const {
+    return {uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, omega, inv_omega};
+  }
+  /// The guide at τ.
+  LANES Pack guide_x(Pack tau) const { return g0x + ux * tau; }
+  LANES Pack guide_y(Pack tau) const { return g0y + uy * tau; }
 };
 
-/// SphereGap's numbers for arc a along each lane's flight (those a caller does not read cost
-/// nothing: inlined, they are never computed).
-LANES SphereGapLanes<Pack> gap_of(const Quiver& q, const Arc& a) {
+/// SphereGap's numbers for the arc of each lane's wall along its flight, and PlaneGap's for the
+/// segment's (those a caller does not read cost nothing: inlined, they are never computed).
+LANES SphereGapLanes<Pack> sphere_gap_of(const Quiver& q, const Wall& a) {
   const Pack q0x = q.g0x - a.cx, q0y = q.g0y - a.cy;
   return sphere_gap<PackLanes>(q.lanes(), a.r, a.sign, a.slack, q0x * q.ux + q0y * q.uy, q0x * q0x + q0y * q0y,
                                (abs(q0x) + abs(q0y)) * (abs(q.ux) + abs(q.uy)), abs(q.sx - a.cx) + abs(q.sy - a.cy),
                                q.rounding_rate);
 }
+LANES PlaneGapLanes<Pack> plane_gap_of(const Quiver& q, const Wall& g) {
+  return plane_gap<PackLanes>(q.lanes(), g.nx * q.accel_x + g.ny * q.accel_y, g.nx * q.ux + g.ny * q.uy,
+                              g.nx * (q.g0x - g.ax) + g.ny * (q.g0y - g.ay), g.slack);
+}
 
-/// A lane's windows: two slots per arc (SphereGap::windows' first and second).
+/// A lane's windows: two slots per wall (SphereGap::windows' first and second; PlaneGap's one).
 struct Windows {
-  Pack start[2 * max_arcs], end[2 * max_arcs], margin[2 * max_arcs];
-  Mask below[2 * max_arcs], open[2 * max_arcs];  // open: found and not yet visited
+  Pack start[2 * max_walls], end[2 * max_walls], margin[2 * max_walls];
+  Mask below[2 * max_walls], open[2 * max_walls];  // open: found and not yet visited
 };
 
-/// SphereGap::windows of arc w until `horizon`, into slots 2w and 2w + 1.  Lanes whose guide
-/// stands still (u = 0) get no window here: they are handed back.  A window in which f' < 0
-/// is certain is not opened: the scalar search visits it and passes it (slope_sign = −1 with
-/// the window's end cut at the best hit so far, which can only be earlier: −1 at the end here
-/// is −1 there, since qe and the threshold, rounded, only decrease with the end, and an
-/// inward guide cannot be outward too), and one visit fewer for a lane is one round fewer for
-/// all sixteen when it is the last to finish.
-LANES void arc_windows(const Quiver& q, const Arc& a, Pack horizon, Mask live, Windows& out, int w) {
-  const SphereGapLanes<Pack> g = gap_of(q, a);
+/// The windows of wall w until `horizon`, into slots 2w and 2w + 1.  Lanes whose guide stands
+/// still (u = 0) get no window here: they are handed back.  A window in which f' < 0 is certain
+/// is not opened: the scalar search visits it and passes it (slope_sign = −1 with the window's
+/// end cut at the best hit so far, which can only be earlier: −1 at the end here is −1 there,
+/// since for an arc qe and the threshold, rounded, only decrease with the end, and an inward
+/// guide cannot be outward too; for a segment the sign does not depend on the window), and one
+/// visit fewer for a lane is one round fewer for all sixteen when it is the last to finish.
+LANES void wall_windows(const Quiver& q, const Walls& walls, Pack horizon, Mask live, Windows& out, int w) {
+  const Wall wall(walls, w);
   WindowLanes<Pack, Mask> found[2];
-  windows<PackLanes>(g, q.lanes(), horizon, live, found[0], found[1]);
+  Pack slope[2];
+  if (walls.arc[w]) {
+    const SphereGapLanes<Pack> g = sphere_gap_of(q, wall);
+    windows<PackLanes>(g, q.lanes(), horizon, live, found[0], found[1]);
+    for (int j = 0; j < 2; ++j) slope[j] = slope_sign<PackLanes>(g, q.lanes(), found[j].start, found[j].end, found[j].margin);
+  } else {
+    const PlaneGapLanes<Pack> g = plane_gap_of(q, wall);
+    found[0] = window<PackLanes>(g, q.lanes(), horizon, live), found[1].open = Mask{};
+    slope[0] = slope[1] = slope_sign<PackLanes>(g, q.lanes(), horizon, horizon, horizon);
+  }
   for (int j = 0; j < 2; ++j) {
     const int slot = 2 * w + j;
     const auto& f = found[j];
-    out.open[slot] = f.open & ~(slope_sign<PackLanes>(g, q.lanes(), f.start, f.end, f.margin) < 0);
+    out.open[slot] = f.open & ~(slope[j] < 0);
     out.start[slot] = f.start, out.end[slot] = f.end, out.margin[slot] = f.margin, out.below[slot] = f.below;
   }
 }
 
-/// may_meet_span(arc, guide(start), guide(end), δ): can the particle reach the arc's span?
-LANES Mask may_meet_span(const Quiver& q, const Arc& a, Pack start, Pack end) {
-  return may_meet_span<PackLanes>(a.lanes(), a.slack, q.delta, (q.g0x + q.ux * start) - a.cx, (q.g0y + q.uy * start) - a.cy,
-                                  (q.g0x + q.ux * end) - a.cx, (q.g0y + q.uy * end) - a.cy);
+/// The sign of f' in each lane's window [start, end] of margin m (slope_sign).
+template <Mix mix>
+LANES Pack slope_sign(const Quiver& q, const Wall& w, const Kinds<mix>& kinds, Pack start, Pack end, Pack margin) {
+  return kinds.by_kind([&]() LANES_LAMBDA { return slope_sign<PackLanes>(sphere_gap_of(q, w), q.lanes(), start, end, margin); },
+                       [&]() LANES_LAMBDA { return slope_sign<PackLanes>(plane_gap_of(q, w), q.lanes(), start, end, margin); });
 }
 
-/// The fields of a where m, else those of b.
-LANES Arc select(Mask m, const Arc& a, const Arc& b) {
-  Arc r = b;
-  r.cx = sel(m, a.cx, b.cx), r.cy = sel(m, a.cy, b.cy), r.r = sel(m, a.r, b.r), r.sign = sel(m, a.sign, b.sign);
-  r.slack = sel(m, a.slack, b.slack), r.fx = sel(m, a.fx, b.fx), r.fy = sel(m, a.fy, b.fy);
-  r.tx = sel(m, a.tx, b.tx), r.ty = sel(m, a.ty, b.ty), r.full = sel(m, a.full, b.full), r.half = sel(m, a.half, b.half);
-  return r;
+/// may_meet_span(wall, guide(start), guide(end), δ): can the particle reach the wall's span?
+template <Mix mix>
+LANES Mask may_meet_span(const Quiver& q, const Wall& w, const Kinds<mix>& kinds, Pack start, Pack end) {
+  const Pack px = q.guide_x(start), py = q.guide_y(start), qx = q.guide_x(end), qy = q.guide_y(end);
+  return kinds.by_kind(
+      [&]() LANES_LAMBDA { return may_meet_span<PackLanes>(w.arc_lanes(), w.slack, q.delta, px - w.cx, py - w.cy, qx - w.cx, qy - w.cy); },
+      [&]() LANES_LAMBDA { return may_meet_span<PackLanes>(w.segment_lanes(), w.dir_norm, q.delta, px, py, qx, qy); });
+}
+
+/// BasicArcWall's or BasicSegmentWall's within_span of (x, y).
+template <Mix mix>
+LANES Mask within_span(const Wall& w, const Kinds<mix>& kinds, Pack x, Pack y) {
+  const PackLanes l;
+  return kinds.by_kind([&]() LANES_LAMBDA { return within_span(l, w.arc_lanes(), x, y); },
+                       [&]() LANES_LAMBDA { return within_span(l, w.segment_lanes(), x, y); });
+}
+
+/// A hit's point on the wall and the region's outward normal there (Table::contact).
+struct Contact {
+  Pack x, y, nx, ny;
+};
+LANES Contact sel(Mask m, const Contact& a, const Contact& b) {
+  return {sel(m, a.x, b.x), sel(m, a.y, b.y), sel(m, a.nx, b.nx), sel(m, a.ny, b.ny)};
+}
+/// BasicArcWall::contact: (x, y) moved onto the circle along the flight (one Newton step), or
+/// radially where that step is not short; the outward normal there.
+LANES Contact arc_contact(const Wall& a, Pack x, Pack y, Pack vx, Pack vy) {
+  const Pack ux = x - a.cx, uy = y - a.cy;
+  const Pack rate = 2 * (ux * vx + uy * vy), s = -((ux * ux - a.r * a.r) + uy * uy) / rate;
+  const Pack v1 = abs(vx) + abs(vy);
+  const Mask along = (abs(s) * v1 <= a.slack) & (abs(s) * v1 * v1 <= abs(rate) / 8);  // (short_step)
+  const Pack qx = x + s * vx, qy = y + s * vy;
+  const Pack inv = 1 / sqrt(ux * ux + uy * uy);
+  const Pack rx = ux * inv, ry = uy * inv;
+  const Pack nx = sel(along, (qx - a.cx) / a.r, rx), ny = sel(along, (qy - a.cy) / a.r, ry);
+  const Mask focusing = a.sign > 0;
+  return {sel(along, qx, a.cx + a.r * rx), sel(along, qy, a.cy + a.r * ry), sel(focusing, nx, -nx), sel(focusing, ny, -ny)};
+}
+/// BasicSegmentWall::contact: (x, y) projected onto the segment (an end beyond it), the normal.
+LANES Contact segment_contact(const Wall& g, Pack x, Pack y) {
+  const Pack along = (x - g.ax) * g.dir_x + (y - g.ay) * g.dir_y, d = g.nx * (x - g.ax) + g.ny * (y - g.ay);
+  const Mask before = along <= 0, after = along >= 1;
+  return {sel(before, g.ax, sel(after, g.bx, x - g.nx * d)), sel(before, g.ay, sel(after, g.by, y - g.ny * d)), g.nx, g.ny};
 }
 
 /// The searches' lanes: the best hit so far (first_hit_in_windows' tau_best, best_wall, phase)
 /// and, for the lanes in a root search, monotone_crossing's variables.
+template <Mix table>
 class Lanes {
  public:
-  Lanes(const Arcs& arcs, const Quiver& q, Mask live, Pack horizon)
-      : arcs_(arcs), all_(arcs), q_(q), tau_best_(horizon), cur_(arcs, 0) {
+  Lanes(const Walls& walls, const Quiver& q, Mask live, Pack horizon)
+      : walls_(walls),
+        all_(walls, table), q_(q), tau_best_(horizon), cur_(walls, 0) {
     handed_back_ = ~live | ~(q.uu > 0) | q.creeping;  // (a guide standing still: the scalar search)
     choosing_ = ~handed_back_;
-    for (int w = 0; w < arcs.count; ++w) arc_windows(q, Arc(arcs, w), horizon, choosing_, win_, w);
+    for (int w = 0; w < walls.count; ++w) wall_windows(q, walls, horizon, choosing_, win_, w);
   }
 
   /// The windows are visited in the order in which they open, each lane on its own: in a
@@ -455,23 +572,15 @@ class Lanes {
       const Pack vx = q.v0x + q.amp_v_x * (sn - q.sin_phase), vy = q.v0y + q.amp_v_y * (sn - q.sin_phase);
       const Pack x = (q.sx + q.ux * tau) - q.amp_x_x * (cs - q.cos_phase);
       const Pack y = (q.sy + q.uy * tau) - q.amp_x_y * (cs - q.cos_phase);
-      // BasicArcWall::contact: x moved onto the circle along the flight (one Newton step), or
-      // radially where that step is not short; the outward normal there.
-      const Arc a(all_, best_wall_);
-      const Pack ux = x - a.cx, uy = y - a.cy;
-      const Pack rate = 2 * (ux * vx + uy * vy), s = -((ux * ux - a.r * a.r) + uy * uy) / rate;
-      const Pack v1 = abs(vx) + abs(vy);
-      const Mask along = (abs(s) * v1 <= a.slack) & (abs(s) * v1 * v1 <= abs(rate) / 8);  // (short_step)
-      const Pack qx = x + s * vx, qy = y + s * vy;
-      const Pack inv = 1 / sqrt(ux * ux + uy * uy);
-      const Pack rx = ux * inv, ry = uy * inv;
-      const Pack px = sel(along, qx, a.cx + a.r * rx), py = sel(along, qy, a.cy + a.r * ry);
-      const Pack nx = sel(along, (qx - a.cx) / a.r, rx), ny = sel(along, (qy - a.cy) / a.r, ry);
-      const Mask focusing = a.sign > 0;
-      const Pack normal_x = sel(focusing, nx, -nx), normal_y = sel(focusing, ny, -ny);
+      const Wall a(all_, best_wall_, table);
+      Contact c;
+      for_kinds(a, found, [&](const auto& kinds) LANES_LAMBDA {
+        c = kinds.by_kind([&]() LANES_LAMBDA { return arc_contact(a, x, y, vx, vy); },
+                          [&]() LANES_LAMBDA { return segment_contact(a, x, y); });
+      });
       store(hits.t, t), store(hits.x, x), store(hits.y, y), store(hits.vx, vx), store(hits.vy, vy);
       store(hits.phase_hi, phase_hi), store(hits.phase_lo, phase_lo), store(hits.sin_phase, sn), store(hits.cos_phase, cs);
-      store(hits.point_x, px), store(hits.point_y, py), store(hits.normal_x, normal_x), store(hits.normal_y, normal_y);
+      store(hits.point_x, c.x), store(hits.point_y, c.y), store(hits.normal_x, c.nx), store(hits.normal_y, c.ny);
     }
     const auto made_in = values(made);
     for (int i = 0; i < W; ++i) hits.made[i] = made_in[i] != 0;
@@ -511,8 +620,8 @@ class Lanes {
   ROUND_PART void choose() {
     // The earliest open window, the first of equals (as the scalar search's stable order):
     // a tournament, whose rounds do not wait on one another as a pass over the slots would.
-    constexpr int max_slots = 2 * max_arcs;
-    const int slots = 2 * arcs_.count;
+    constexpr int max_slots = 2 * max_walls;
+    const int slots = 2 * walls_.count;
     Pack key[max_slots];
     Mask index[max_slots];
     Mask found{};
@@ -537,13 +646,21 @@ class Lanes {
     }
     const Mask go = found & (start <= tau_best_);
     choosing_ &= go;
-    for (int j = 0; j < 2 * arcs_.count; ++j) win_.open[j] &= ~(go & (slot == j));
+    for (int j = 0; j < slots; ++j) win_.open[j] &= ~(go & (slot == j));
     if (!any(go)) return;
     const Mask wall = slot >> 1;
-    const Arc a(all_, wall);
+    const Wall a(all_, wall, table);
     end = min(end, tau_best_);
-    const Pack slope = slope_sign<PackLanes>(gap_of(q_, a), q_.lanes(), start, end, margin);
-    const Mask passes = ~may_meet_span(q_, a, start, end);
+    for_kinds(a, go, [&](const auto& kinds) LANES_LAMBDA { begin_searches(kinds, go, wall, a, start, end, margin, below); });
+  }
+
+  /// The sign of f' and the span test of the windows [start, end] of margin m that the lanes
+  /// `go` chose (their walls a); the start of a root search where both allow a collision.
+  template <Mix mix>
+  LANES void begin_searches(const Kinds<mix>& kinds, Mask go, Mask wall, const Wall& a, Pack start, Pack end,
+                                 Pack margin, Mask below) {
+    const Pack slope = slope_sign(q_, a, kinds, start, end, margin);
+    const Mask passes = ~may_meet_span(q_, a, kinds, start, end);
     const Mask kept = go & ~((slope < 0) | passes);
     const Mask uncertain = kept & (slope == 0);  // (the certified scan: the scalar search)
     handed_back_ |= uncertain;
@@ -551,22 +668,36 @@ class Lanes {
     choosing_ &= ~(uncertain | begin);
     if (!any(begin)) return;
     searching_ |= begin;
-    cur_ = select(begin, a, cur_);
+    cur_ = select(begin, a, cur_, table);
     wall_ = sel(begin, wall, wall_);
     start_ = sel(begin, start, start_), end_ = sel(begin, end, end_);
     lo_ = sel(begin, start, lo_), hi_ = sel(begin, end, hi_);
     bracketed_ &= ~begin;
     steps_ = sel(begin, Mask{}, steps_);
-    const Pack jerk = jerk_bound<PackLanes>(gap_of(q_, cur_), q_.lanes(), margin);
+    const Pack jerk = kinds.by_kind([&]() LANES_LAMBDA { return jerk_bound<PackLanes>(sphere_gap_of(q_, a), q_.lanes(), margin); },
+                                    [&]() LANES_LAMBDA { return jerk_bound<PackLanes>(plane_gap_of(q_, a), q_.lanes(), margin); });
     jerk_ = sel(begin, jerk, jerk_);
     tau_ = sel(begin, sel(below, start + (end - start) / 2, start), tau_);
   }
 
+  /// f(Kinds) for the kinds of the walls w of the lanes that `count`: the table's one kind, or
+  /// where it has both, theirs.
+  template <class F>
+  LANES void for_kinds(const Wall& w, Mask count, F f) const {
+    if constexpr (table == Mix::both) with_kinds(w, count, f);
+    else f(Kinds<table>{w.arc});
+  }
+
   /// One iteration of monotone_crossing in every searching lane.
-  ROUND_PART void step() {
+  void step() {
+    for_kinds(cur_, searching_, [&](const auto& kinds) LANES_LAMBDA { step(kinds); });
+  }
+  template <Mix mix>
+  ROUND_PART void step(const Kinds<mix>& kinds) {
     const Quiver& q = q_;
-    const Arc& a = cur_;
-    const SphereGapLanes<Pack> g = gap_of(q, a);
+    const Wall& a = cur_;
+    const SphereGapLanes<Pack> sphere = sphere_gap_of(q, a);
+    const PlaneGapLanes<Pack> plane = plane_gap_of(q, a);
     const Pack tau = tau_;
     // The Taylor sample at τ (SphereGap::taylor, Quiver::motion).
     const Mask at_start = tau == 0;
@@ -580,9 +711,16 @@ class Lanes {
     const Pack y = sel(at_start, q.sy, (q.g0y + q.uy * tau) - q.amp_x_y * cs);
     const Pack vx = sel(at_start, q.v0x, q.ux + q.amp_v_x * sn), vy = sel(at_start, q.v0y, q.uy + q.amp_v_y * sn);
     const Pack ax = q.accel_x * cs, ay = q.accel_y * cs;
-    const Pack px = x - a.cx, py = y - a.cy;
-    const TaylorLanes<Pack> p = taylor<PackLanes>(g, px * px + py * py, px * vx + py * vy, vx * vx + vy * vy, px * ax + py * ay);
-    const Pack &f = p.f, &df = p.df, tol = band<PackLanes>(g, tau);
+    // SphereGap::taylor from the dot products of p = x − c; PlaneGap::taylor, n·(x − a), n·v, n·ẍ.
+    const TaylorLanes<Pack> p = kinds.by_kind([&]() LANES_LAMBDA {
+      const Pack px = x - a.cx, py = y - a.cy;
+      return taylor<PackLanes>(sphere, px * px + py * py, px * vx + py * vy, vx * vx + vy * vy, px * ax + py * ay);
+    }, [&]() LANES_LAMBDA {
+      return TaylorLanes<Pack>{a.nx * (x - a.ax) + a.ny * (y - a.ay), a.nx * vx + a.ny * vy, a.nx * ax + a.ny * ay};
+    });
+    const Pack &f = p.f, &df = p.df;
+    const Pack tol = kinds.by_kind([&]() LANES_LAMBDA { return band<PackLanes>(sphere, tau); },
+                                   [&]() LANES_LAMBDA { return band<PackLanes>(plane, tau); });
 
     // At the wall to rounding: the polished root, if it is in the span.
     const Mask band = searching_ & (abs(f) <= tol);
@@ -590,7 +728,7 @@ class Lanes {
     Mask undecided = band & ~rising, never{}, root{};
     Pack found = tau, found_th = th, found_sn = sn, found_cs = cs;
     if (any(band & rising)) {  // (rare: most roots are found by a certain step, below)
-      never = band & rising & ~a.within_span(x, y);
+      never = band & rising & ~within_span(a, kinds, x, y);
       root = band & rising & ~never;
       found = polished_root<PackLanes>(tau, f, df, tol);
     }
@@ -608,10 +746,15 @@ class Lanes {
     // certainly_below: the next τ is the root without a sample there.
     const Pack th_next = q.phase + q.omega * next, shift = th_next - th;
     const Mask landed =
-        stepping & certainly_below<PackLanes>(p, next - tau, jerk_, rounding<PackLanes>(g, next)) & (abs(shift) <= 0.05);
+        stepping &
+        certainly_below<PackLanes>(p, next - tau, jerk_,
+                                   kinds.by_kind([&]() LANES_LAMBDA { return rounding<PackLanes>(sphere, next); },
+                                                 [&]() LANES_LAMBDA { return rounding<PackLanes>(plane, next); })) &
+        (abs(shift) <= 0.05);
     if (any(landed)) {
       const auto [sn_next, cs_next] = shifted<PackLanes>(SinCos<Pack>{sn, cs}, shift);
-      const Mask in = a.within_span((q.g0x + q.ux * next) - q.amp_x_x * cs_next, (q.g0y + q.uy * next) - q.amp_x_y * cs_next);
+      const Mask in =
+          within_span(a, kinds, (q.g0x + q.ux * next) - q.amp_x_x * cs_next, (q.g0y + q.uy * next) - q.amp_x_y * cs_next);
       never |= landed & ~in;
       root |= landed & in;
       found = sel(landed, next, found);
@@ -639,12 +782,12 @@ class Lanes {
   /// Has the lane a window not yet visited that opens by τ?
   Mask window_opens_by(Pack tau) const {
     Mask opens{};
-    for (int j = 0; j < 2 * arcs_.count; ++j) opens |= win_.open[j] & (win_.start[j] <= tau);
+    for (int j = 0; j < 2 * walls_.count; ++j) opens |= win_.open[j] & (win_.start[j] <= tau);
     return opens;
   }
 
-  const Arcs& arcs_;
-  const Arc all_;  // the arcs, one per lane
+  const Walls& walls_;
+  const Wall all_;  // the walls, one per lane
   const Quiver& q_;
   Windows win_;
   Pack tau_best_;
@@ -652,19 +795,25 @@ class Lanes {
   Pack theta_ = splat(inf), sin_ = splat(0.0), cos_ = splat(1.0);
   Mask handed_back_, choosing_, searching_{};
   // The root search of each searching lane: its window's arc, wall, ends, bracket and iterate.
-  Arc cur_;
+  Wall cur_;
   Mask wall_{}, bracketed_{}, steps_{};
   Pack start_{}, end_{}, lo_{}, hi_{}, tau_{}, jerk_{};
 };
 
 }  // namespace
 
-void first_hits(const Arcs& arcs, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits) {
+void first_hits(const Walls& walls, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits) {
   const Quiver q(drive, flights);
-  Lanes lanes(arcs, q, load_mask(flights.active), load(flights.tau_end));
-  while (lanes.busy()) lanes.round();
-  lanes.write(hits);
-  lanes.make_states(cells, flights, hits);
+  const Mask live = load_mask(flights.active);
+  const Pack horizon = load(flights.tau_end);
+  auto search = [&](auto&& lanes) {
+    while (lanes.busy()) lanes.round();
+    lanes.write(hits);
+    lanes.make_states(cells, flights, hits);
+  };
+  if (walls.segments == 0) search(Lanes<Mix::arcs>(walls, q, live, horizon));
+  else if (walls.segments == walls.count) search(Lanes<Mix::segments>(walls, q, live, horizon));
+  else search(Lanes<Mix::both>(walls, q, live, horizon));
 }
 
 #undef LANES

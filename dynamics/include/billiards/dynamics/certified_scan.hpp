@@ -246,24 +246,6 @@ struct Window {
   bool below;
 };
 
-/// The rounding tolerance of a gap is c0 + c1 τ: the time by which a window that ends at
-/// most (d + 2 tol(τ))/speed after t0 has ended, solved for τ (the margin at that time covers
-/// the whole window), or +∞ when the guide is too slow to outrun the growth of the tolerance.
-template <class Real>
-Real window_horizon(const Real& t0, const Real& d, const Real& c0, const Real& c1, const Real& speed) {
-  const Real slack = speed - 2 * c1;
-  return slack > 0 ? Real(t0 + (d + 2 * (c0 + c1 * t0)) / slack) : Real(never);
-}
-
-/// The time up to which a window's margin must cover the rounding of f: the horizon, or when
-/// there is none, `bound()` (a window_horizon).  (The horizon itself widens a window by the
-/// rounding's growth until then, ~1e-12 of the oscillation's amplitude for a horizon of 10³
-/// flights, and saves a division per wall.)
-template <class Real, class Bound>
-Real margin_time(const Real& horizon, Bound bound) {
-  return horizon < never ? horizon : bound();
-}
-
 /// Clips the window [start, end] to [0, horizon] (driven_exit-inl.hpp's clip_window) into
 /// out[n]; returns the new count.
 template <class Real>

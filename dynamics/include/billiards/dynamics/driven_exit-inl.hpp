@@ -1,11 +1,12 @@
-// A driven flight's search through a circle or a sphere, written once over a number type: the
-// gap's rounding, its windows along the guiding line, the sign of f' in a window, its Taylor
-// sample, the span test of a window, and the bracketed Halley step that finds the root.
-// Included into a namespace by certified_scan.hpp (scan: SphereGap and monotone_crossing, in
-// double, long double and MPFR, 2-D and 3-D) and by lockstep_kernel.cpp (each SIMD target's
-// lanes).  Its numbers are scalars: the dot products of the flight's vectors, which depend on
-// the dimension, are its callers'.  Besides straight_exit-inl.hpp's traits, `L` supplies
-// L::eps() (the number's), L::min (std::min's order) and L::fraction(a, b).
+// A driven flight's search through a line or a plane, a circle or a sphere, written once over
+// a number type: each gap's rounding, its windows along the guiding line, the sign of f' in a
+// window, its Taylor sample, the span test of a window, and the bracketed Halley step that
+// finds the root.  Included into a namespace by certified_scan.hpp (scan: PlaneGap, SphereGap
+// and monotone_crossing, in double, long double and MPFR, 2-D and 3-D) and by
+// lockstep_kernel.cpp (each SIMD target's lanes).  Its numbers are scalars: the dot products
+// of the flight's vectors, which depend on the dimension, are its callers'.  Besides
+// straight_exit-inl.hpp's traits, `L` supplies L::eps() (the number's), L::min (std::min's
+// order) and L::fraction(a, b).
 // (No include guard: included once into each namespace.  It includes nothing: see
 // straight_exit-inl.hpp.  Its lambdas are inlined always: GCC calls a lambda of sixteen lanes
 // out of line, which made the lock-step search a quarter slower.)
@@ -13,10 +14,10 @@
 /// What a gap's scan knows of a driven flight (forced_flight.hpp's Quiver): its guiding line
 /// g0 + u τ, |u|² and 1/|u|² (0 when u = 0), |u|, the bound on the speed, the bounds |F|/(mω)
 /// and |F|/(mω²) on the deviations of velocity and position from the guide's, |F|/m, and the
-/// drive's ω (the rate at which the acceleration turns).
+/// drive's ω (the rate at which the acceleration turns) and 1/ω.
 template <class F>
 struct GuideLanes {
-  F uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, omega;
+  F uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, omega, inv_omega;
 };
 
 /// A sphere (in 2-D a circle) of centre c and radius r, seen from the guide: b = q0·u, cc = |q0|²
@@ -84,6 +85,28 @@ template <class L, class Num = typename L::Num>
   return {g.sign * (pp - g.r * g.r), two_sign * pv, two_sign * (vv + pa)};
 }
 
+/// The rounding tolerance of a gap is c0 + c1 τ: the time by which a window that ends at most
+/// (d + 2 tol(τ))/speed after t0 has ended, solved for τ (the margin at that time covers the
+/// whole window), or +∞ when the guide is too slow to outrun the growth of the tolerance.
+template <class L, class Num = typename L::Num>
+[[gnu::always_inline]] inline Num window_horizon(const Num& t0, const Num& d, const Num& c0, const Num& c1,
+                                                 const Num& speed) {
+  const Num two = L::splat(2), slack = speed - two * c1;
+  return L::select(slack > L::splat(0), Num(t0 + (d + two * (c0 + c1 * t0)) / slack), L::never());
+}
+
+/// The time up to which a window's margin must cover the rounding of f: the horizon, or where
+/// there is none, `bound()` (a window_horizon).  (The horizon itself widens a window by the
+/// rounding's growth until then, ~1e-12 of the oscillation's amplitude for a horizon of 10³
+/// flights, and saves a division per wall.  Ensembles have a horizon: bound() is computed only
+/// where a live lane has none.)
+template <class L, class Bound, class Num = typename L::Num, class Truth = typename L::Truth>
+[[gnu::always_inline]] inline Num margin_time(const Num& horizon, const Truth& live, Bound bound) {
+  const Truth unbounded = horizon == L::never();
+  if (L::none(L::both(live, unbounded))) return horizon;
+  return L::select(unbounded, bound(), horizon);
+}
+
 /// Clips the window [start, end] to [0, horizon] (scan::clip_window).
 template <class L, class Num = typename L::Num, class Truth = typename L::Truth>
 [[gnu::always_inline]] inline WindowLanes<Num, Truth> clip_window(const Truth& found, const Num& start, const Num& end,
@@ -98,8 +121,7 @@ template <class L, class Num = typename L::Num, class Truth = typename L::Truth>
 /// within r ± 2m of c in one interval, or in two when it passes inside r − 2m.  For a guide that
 /// moves (uu > 0): none where the guide misses the sphere, or moves away from it, even with the
 /// margin at the horizon (no smaller than any margin below), as most walls do.  The margin
-/// covers the rounding until the horizon, or, without one, until the guide must have left
-/// (scan::window_horizon).
+/// covers the rounding until the horizon, or, without one, until the guide must have left.
 template <class L, class FQ, class Num = typename L::Num, class Truth = typename L::Truth>
 [[gnu::always_inline]] inline void windows(const SphereGapLanes<Num>& g, const GuideLanes<FQ>& q, const Num& horizon,
                                            const Truth& live, WindowLanes<Num, Truth>& first,
@@ -110,14 +132,9 @@ template <class L, class FQ, class Num = typename L::Num, class Truth = typename
   const Truth near = L::both(L::both(live, uu > zero), L::negate(out_of_reach));
   first.open = second.open = near;
   if (L::none(near)) return;
-  Num margin_time = horizon;
-  const Truth unbounded = horizon == L::never();
-  if (!L::none(L::both(live, unbounded))) {  // (not in ensembles, which have a horizon)
-    const Num t0 = L::neg(b) * q.inv_uu, d = g.r + two * q.delta, slack = q.speed - two * g.tol1;
-    const Num bound = L::select(slack > zero, Num(t0 + (d + two * (g.tol0 + g.tol1 * t0)) / slack), L::never());
-    margin_time = L::select(unbounded, bound, horizon);
-  }
-  const Num m = q.delta + tolerance<L>(g, margin_time);
+  const Num m = q.delta + tolerance<L>(g, margin_time<L>(horizon, live, [&]() __attribute__((always_inline)) {
+                  return window_horizon<L>(Num(L::neg(b) * q.inv_uu), Num(g.r + two * q.delta), g.tol0, g.tol1, q.speed);
+                }));
   // Times at which the guide is at distance ρ from c: the roots of uu τ² + 2bτ + cc − ρ², each
   // from its stable form (one division of selected operands); false where it never is.
   auto at_distance = [&](const Num& rho, Num& t1, Num& t2) __attribute__((always_inline)) {
@@ -183,6 +200,84 @@ template <class L, class FW, class WT, class Num = typename L::Num>
                                L::min(cross(ax, ay, w.from_x, w.from_y), cross(bx, by, w.from_x, w.from_y)) > margin));
     });
   });
+}
+
+/// A line (in 3-D a plane) through a with outward unit normal n, seen from the guide: f = n·(x − a)
+/// lies within B of its guiding part g_off + nu τ (g_off = n·(g0 − a), nu = n·u), with
+/// |n·F|/m = n_a and |n·F|/(mω) = n_w; its rounding level is tol0 + tol1 τ.
+template <class Num>
+struct PlaneGapLanes {
+  Num slack, n_a, n_w, B, nu, g_off, tol0, tol1;
+};
+
+/// The gap's numbers from n·F/m, n·u and n·(g0 − a) (Quiver::along's bounds); tol1 from
+/// |f'| ≤ |nu| + |n·F|/(mω), so that the band covers f's change over the scan's step floor.
+template <class L, class FQ, class Num = typename L::Num>
+[[gnu::always_inline]] inline PlaneGapLanes<Num> plane_gap(const GuideLanes<FQ>& q, const Num& n_accel, const Num& nu,
+                                                           const Num& g_off, const Num& slack) {
+  const Num eps8 = L::splat(8) * L::eps(), n_a = L::abs(n_accel), n_w = n_a * q.inv_omega, B = n_w * q.inv_omega;
+  return {slack, n_a, n_w, B, nu, g_off, slack + eps8 * (L::abs(g_off) + B), eps8 * (L::abs(nu) + n_w)};
+}
+
+template <class L, class Num = typename L::Num>
+[[gnu::always_inline]] inline Num tolerance(const PlaneGapLanes<Num>& g, const Num& tau) {
+  return g.tol0 + g.tol1 * tau;
+}
+/// The level below which |f| is within the rounding band at τ.
+template <class L, class Num = typename L::Num>
+[[gnu::always_inline]] inline Num band(const PlaneGapLanes<Num>& g, const Num& tau) {
+  return tolerance<L>(g, tau);
+}
+template <class L, class Num = typename L::Num>
+[[gnu::always_inline]] inline Num rounding(const PlaneGapLanes<Num>& g, const Num& tau) {
+  return tolerance<L>(g, tau) - g.slack;
+}
+/// A bound on |f'''| = |n·F ω sin θ|/m.
+template <class L, class FQ, class Num = typename L::Num>
+[[gnu::always_inline]] inline Num jerk_bound(const PlaneGapLanes<Num>& g, const GuideLanes<FQ>& q, const Num&) {
+  return g.n_a * q.omega;
+}
+
+/// The gap's window until `horizon` (the guide is linear: one at most), from the guide at −2m
+/// to the guide at +2m; a guide that does not move across the line (nu = 0) has one, the whole
+/// flight.
+template <class L, class FQ, class Num = typename L::Num, class Truth = typename L::Truth>
+[[gnu::always_inline]] inline WindowLanes<Num, Truth> window(const PlaneGapLanes<Num>& g, const GuideLanes<FQ>&,
+                                                             const Num& horizon, const Truth& live) {
+  const Num zero = L::splat(0), two = L::splat(2);
+  const Truth still = g.nu == zero, rising = g.nu > zero;
+  const Num speed = L::abs(g.nu);
+  const Num m = g.B + tolerance<L>(g, margin_time<L>(horizon, live, [&]() __attribute__((always_inline)) {
+                  return window_horizon<L>(zero, Num(L::abs(g.g_off) + two * g.B), g.tol0, g.tol1, speed);
+                }));
+  const Num inv_nu = L::splat(1) / g.nu;
+  const Num from = (L::neg(two * m) - g.g_off) * inv_nu, to = (two * m - g.g_off) * inv_nu;
+  const Num start = L::select(still, zero, L::select(rising, from, to));
+  const Num end = L::select(still, horizon, L::select(rising, to, from));
+  const Num margin = L::select(still, Num(g.B + tolerance<L>(g, horizon)), m);
+  return clip_window<L>(live, start, end, margin, L::both(rising, L::negate(still)), horizon);
+}
+
+/// +1 when f' = nu + n·(F/mω) sin θ > 0 throughout the window, −1 when f' < 0, 0 when the bounds
+/// cannot tell.
+template <class L, class FQ, class Num = typename L::Num>
+[[gnu::always_inline]] inline Num slope_sign(const PlaneGapLanes<Num>& g, const GuideLanes<FQ>& q, const Num&,
+                                             const Num&, const Num&) {
+  const Num eps = L::eps(), wobble = g.n_w * (L::splat(1) + L::splat(16) * eps) + L::splat(8) * eps * q.speed;
+  return L::select(g.nu > wobble, L::splat(1), L::select(g.nu < L::neg(wobble), L::splat(-1), L::splat(0)));
+}
+
+/// Can a point within `pad` of the segment [p, q] lie in the segment wall's span?  Its span is
+/// the strip 0 ≤ (x − a)·dir ≤ 1, whose function takes its extremes at p or q (|dir| = dir_norm).
+/// BasicSegmentWall::may_meet_span.
+template <class L, class FW, class Num = typename L::Num>
+[[gnu::always_inline]] inline typename L::Truth may_meet_span(const SegmentLanes<FW>& w, const Num& dir_norm, const Num& pad,
+                                                              const Num& px, const Num& py, const Num& qx,
+                                                              const Num& qy) {
+  const Num sp = (px - w.ax) * w.dir_x + (py - w.ay) * w.dir_y, sq = (qx - w.ax) * w.dir_x + (qy - w.ay) * w.dir_y;
+  const Num one = L::splat(1);
+  const Num margin = (w.slack + pad) * dir_norm + L::splat(8) * L::eps() * (one + L::abs(sp) + L::abs(sq));
+  return L::both(L::max(sp, sq) >= L::neg(margin), L::min(sp, sq) <= one + margin);
 }
 
 /// The root polished by one Newton step from the sample (τ, f, f') within the rounding band

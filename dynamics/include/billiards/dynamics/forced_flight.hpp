@@ -71,10 +71,10 @@ auto guiding_velocity(const Flight& f, const State& s) {
 /// position relative to the walls.
 ///
 /// It is what the certified scan and the walls' gaps (walls.hpp) know of the flight: the
-/// guiding line (g0, u, `guide`), the bounds on the deviation from it (`delta`, `wobble`,
-/// `along`), on the speed and the acceleration (`speed_bound`, `accel_norm`, `turn_rate`),
-/// the motion (`at`, `motion`) and its `Mark` at a sample (the drive's phase, from which
-/// `shifted_to` gives a nearby time's position without a sine and cosine).
+/// guiding line (g0, u, `guide`), the bounds on the deviation from it (`delta`, `wobble`), on
+/// the speed and the acceleration (`speed_bound`, `accel_norm`, `turn_rate`), the motion
+/// (`at`, `motion`) and its `Mark` at a sample (the drive's phase, from which `shifted_to` gives
+/// a nearby time's position without a sine and cosine).
 template <class Flight, class State>
 struct Quiver {
   using Real = typename Flight::Scalar;
@@ -117,17 +117,7 @@ struct Quiver {
   V guide(const Real& tau) const { return g0 + u * tau; }
   /// Its numbers as driven_exit-inl.hpp reads them (in place).
   scan::GuideLanes<const Real&> lanes() const {
-    return {uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, flight.omega};
-  }
-  /// Bounds along a unit vector n (a flat wall's normal): |n·F|/m on the second derivative of
-  /// n·x, and |n·F|/(mω), |n·F|/(mω²) on the deviation of n·v and n·x from the guide's.
-  struct Along {
-    Real accel, wobble, deviation;
-  };
-  Along along(const V& n) const {
-    using std::abs;
-    const Real a = abs(n.dot(flight.accel)), w = a * inv_omega;
-    return {a, w, w * inv_omega};
+    return {uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, flight.omega, inv_omega};
   }
   /// The acceleration turns at this rate: |da/dt| ≤ accel_norm · turn_rate (the drive's ω).
   Real turn_rate() const { return flight.omega; }

@@ -35,8 +35,8 @@ Kernel chosen_kernel();
 
 }  // namespace lockstep
 
-/// A table whose driven flights can be searched in lock step (arcs only, at most
-/// lockstep::max_arcs of them), ready for `collisions`.
+/// A table whose driven flights can be searched in lock step (segments and arcs, at most
+/// lockstep::max_walls of them), ready for `collisions`.
 class LockstepTable {
  public:
   static constexpr int lanes = lockstep::lanes;
@@ -54,7 +54,7 @@ class LockstepTable {
   const Table* table_;
   const PeriodicDriveFlight* flight_;
   lockstep::Kernel kernel_;
-  lockstep::Arcs arcs_;
+  lockstep::Walls walls_{};
   lockstep::Drive drive_;
   lockstep::Cells cells_;
   bool usable_ = false;

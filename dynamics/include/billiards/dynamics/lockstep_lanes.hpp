@@ -16,16 +16,22 @@ namespace lockstep {
 /// whose independent operations interleave and hide each other's latency; more lanes only
 /// lengthen the rounds in which finished lanes wait for the rest.)
 inline constexpr int lanes = 16;
-inline constexpr int max_arcs = 8;
+inline constexpr int max_walls = 8;
 
-/// A table's arcs, field by field (BasicArcWall's), padded to max_arcs.  (These structs are
-/// aligned to the kernel's registers, so that no load of a field straddles two cache lines,
-/// which would cost a second access on each of the kernel's loads.)
-struct alignas(64) Arcs {
-  double cx[max_arcs], cy[max_arcs], r[max_arcs], sign[max_arcs], slack[max_arcs];
-  double fx[max_arcs], fy[max_arcs], tx[max_arcs], ty[max_arcs];
-  std::int64_t full[max_arcs], half[max_arcs];  // −1 (true) or 0
-  int count = 0;
+/// A table's segments and arcs, field by field (BasicSegmentWall's and BasicArcWall's), the
+/// segments first as the scalar search numbers them, padded to max_walls: each wall fills the
+/// fields of its kind.  (These structs are aligned to the kernel's registers, so that no load
+/// of a field straddles two cache lines, which would cost a second access on each of the
+/// kernel's loads.)
+struct alignas(64) Walls {
+  std::int64_t arc[max_walls];  // −1: an arc, 0: a segment
+  double slack[max_walls];
+  double cx[max_walls], cy[max_walls], r[max_walls], sign[max_walls];  // an arc
+  double fx[max_walls], fy[max_walls], tx[max_walls], ty[max_walls];
+  std::int64_t full[max_walls], half[max_walls];  // −1 (true) or 0
+  double ax[max_walls], ay[max_walls], bx[max_walls], by[max_walls];  // a segment
+  double nx[max_walls], ny[max_walls], dir_x[max_walls], dir_y[max_walls], dir_norm[max_walls], span_tol[max_walls];
+  int count = 0, segments = 0;
 };
 
 /// The table's classified cells (BasicTable::Classes), for the flights' midpoint check.
@@ -52,7 +58,8 @@ struct alignas(64) Flights {
   std::int64_t active[lanes];                                     // −1: search this lane
 };
 
-/// What the search found, lane by lane: the first hit's τ and wall (−1: none before tau_end),
+/// What the search found, lane by lane: the first hit's τ and wall (its number in Walls; −1:
+/// none before tau_end),
 /// the drive's phase sampled there (theta = never: not sampled), or `handed_back`: the scalar
 /// search must decide this lane.  Where `made`, also the flight's state at the hit (as
 /// PeriodicDriveFlight::advance makes it from the sample) and the contact (Table::contact);
@@ -70,7 +77,7 @@ struct alignas(64) Hits {
 };
 
 /// The kernel (lockstep_kernel.cpp), as compiled for one SIMD target.
-using Kernel = void (*)(const Arcs& arcs, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits);
+using Kernel = void (*)(const Walls& walls, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits);
 
 }  // namespace lockstep
 

@@ -71,80 +71,59 @@ namespace scan {
 // The walls' gaps along a flight, in 2-D and 3-D: the wall geometry of the certified scan.
 
 /// How far beyond the line (2-D) or plane (3-D) through `a` with outward unit normal `n` the
-/// flight `q` is: f = n·(x − a), which lies within B (q.along(n): |n·F|/(mω²) for the drive)
-/// of its guiding part g_off + nu τ; `q` is a flight seen as a guiding line with bounded
-/// deviation (forced_flight.hpp's Quiver).  A gap gives a scan of one wall everything it needs:
-/// f and its rounding, the windows (the only times at which f can vanish) and a bound on the
-/// sign of f' in a window.
+/// flight `q` is: f = n·(x − a), which lies within B = |n·F|/(mω²) of its guiding part
+/// g_off + nu τ; `q` is a flight seen as a guiding line with bounded deviation
+/// (forced_flight.hpp's Quiver).  A gap gives a scan of one wall everything it needs: f and its
+/// rounding, the windows (the only times at which f can vanish) and a bound on the sign of f'
+/// in a window.  Its numbers along the guide, window and sign of f' are driven_exit-inl.hpp's,
+/// which the lock-step kernel runs too.
 template <class Q, class V>
 struct PlaneGap {
   using Real = typename Q::Real;
+  using L = ScalarLanes<Real>;
   const Q& q;
   V n, a;
-  Real slack, n_a, n_w, B, nu, g_off;  // n_a, n_w, B: q.along(n)
-  Real tol0, tol1;  // the rounding level of f at τ is tol0 + tol1 τ
+  PlaneGapLanes<Real> g;
 
-  PlaneGap(const Q& q_, const V& n_, const V& a_, const Real& slack_) : q(q_), n(n_), a(a_), slack(slack_) {
-    using std::abs;
-    const auto bounds = q.along(n);
-    n_a = bounds.accel;
-    n_w = bounds.wobble;
-    B = bounds.deviation;
-    nu = n.dot(q.u);
-    g_off = n.dot(q.g0 - a);
-    tol0 = slack + 8 * eps<Real> * (abs(g_off) + B);
-    // |f'| ≤ |nu| + |n·F|/(mω): the band covers f's change over the scan's step floor.
-    tol1 = 8 * eps<Real> * (abs(nu) + n_w);
+  PlaneGap(const Q& q_, const V& n_, const V& a_, const Real& slack) : q(q_), n(n_), a(a_) {
+    g = plane_gap<L>(q.lanes(), n.dot(q.flight.accel), n.dot(q.u), n.dot(q.g0 - a), slack);
   }
   /// The rounding level of f at τ.
-  Real tolerance(const Real& tau) const { return tol0 + tol1 * tau; }
+  Real tolerance(const Real& tau) const { return scan::tolerance<L>(g, tau); }
   Sample<Real, V> sample(const Real& tau) const {
     const auto [x, v] = q.at(tau);
-    return {n.dot(x - a), n.dot(v), n_a, never, x};
+    return {n.dot(x - a), n.dot(v), g.n_a, never, x};
   }
   Taylor<Real, V, typename Q::Mark> taylor(const Real& tau) const {
     const auto m = q.motion(tau);
     return {n.dot(m.x - a), n.dot(m.v), n.dot(m.a), m.x, band(tau), {m.th, m.sin_th, m.cos_th}};
   }
   /// The level below which |f| (as `taylor` gives it) is within the rounding band at τ.
-  Real band(const Real& tau) const { return tolerance(tau); }
+  Real band(const Real& tau) const { return scan::band<L>(g, tau); }
   /// The rounding of f itself at τ (the band without the walls' slack): a root known to that
   /// level is as good as a polished one.
-  Real rounding(const Real& tau) const { return tolerance(tau) - slack; }
-  /// A bound on |f'''| = |n·F ω sin θ|/m.
-  Real jerk_bound(const Window<Real>&) const { return n_a * q.turn_rate(); }
+  Real rounding(const Real& tau) const { return scan::rounding<L>(g, tau); }
+  Real jerk_bound(const Window<Real>& w) const { return scan::jerk_bound<L>(g, q.lanes(), w.margin); }
   /// First time ≥ τ at which the guide comes within the margin (B and rounding) of the wall, or
   /// +∞: before it f cannot vanish.
   Real window_start(const Real& tau) const {
-    const Real margin = B + tolerance(tau), guide = g_off + nu * tau;
-    return guide < 0 ? reach_linear(tau, guide, nu, Real(-margin)) : reach_linear(tau, Real(-guide), Real(-nu), Real(-margin));
+    const Real margin = g.B + tolerance(tau), guide = g.g_off + g.nu * tau;
+    return guide < 0 ? reach_linear(tau, guide, g.nu, Real(-margin))
+                     : reach_linear(tau, Real(-guide), Real(-g.nu), Real(-margin));
   }
   /// When the guide, from the window's start, is twice the margin away (so that the scan leaves
   /// the window for good), or tau_end.
   Real window_end(const Real& start, const Real& tau_end) const {
     using std::min;
-    if (nu == 0) return start;
-    const Real margin = B + tolerance(start), guide = g_off + nu * start;
-    return min(Real(start + ((nu > 0 ? 2 : -2) * margin - guide) / nu), tau_end);
+    if (g.nu == 0) return start;
+    const Real margin = g.B + tolerance(start), guide = g.g_off + g.nu * start;
+    return min(Real(start + ((g.nu > 0 ? 2 : -2) * margin - guide) / g.nu), tau_end);
   }
-  /// The window until `horizon` (the guide is linear: one at most) into out; returns their
-  /// number.
+  /// The window until `horizon` into out; returns their number (0 or 1).
   int windows(const Real& horizon, Window<Real>* out) const {
-    using std::abs;
-    using std::min;
-    if (nu == 0) return append_window(0, out, Real(0), horizon, Real(B + tolerance(horizon)), false, horizon);
-    const Real m = B + tolerance(margin_time(horizon, [&] {
-                     return window_horizon(Real(0), Real(abs(g_off) + 2 * B), tol0, tol1, abs(nu));
-                   }));
-    const Real inv_nu = 1 / nu, from = (-2 * m - g_off) * inv_nu, to = (2 * m - g_off) * inv_nu;  // the guide at ∓2m
-    return nu > 0 ? append_window(0, out, from, to, m, true, horizon) : append_window(0, out, to, from, m, false, horizon);
+    return append_window(0, out, window<L>(g, q.lanes(), horizon, true));
   }
-  /// +1 when f' > 0 throughout the window (f then crosses zero there at most once, upward), −1
-  /// when f' < 0 (no collision), 0 when the bounds cannot tell: f' = nu + n·(F/mω) sin θ.
-  int slope_sign(const Window<Real>&) const {
-    const Real wobble = n_w * (1 + 16 * eps<Real>) + 8 * eps<Real> * q.speed;
-    return nu > wobble ? 1 : nu < -wobble ? -1 : 0;
-  }
+  int slope_sign(const Window<Real>& w) const { return int(scan::slope_sign<L>(g, q.lanes(), w.start, w.end, w.margin)); }
 };
 
 /// The same for the circle (2-D) or sphere (3-D) of centre c and radius r, the region inside it
@@ -323,12 +302,7 @@ struct BasicSegmentWall {
   /// intersection of half-planes, whose linear functions take their extremes over [p, q] at p
   /// or q; false only when certainly not.
   bool may_meet_span(const V& p, const V& q, const Real& pad) const {
-    using std::abs;
-    using std::max;
-    using std::min;
-    const Real sp = (p - a).dot(dir), sq = (q - a).dot(dir);
-    const Real margin = (slack + pad) * dir.norm() + 8 * scan::eps<Real> * (1 + abs(sp) + abs(sq));
-    return max(sp, sq) >= -margin && min(sp, sq) <= 1 + margin;
+    return scan::may_meet_span<ScalarLanes<Real>>(segment_lanes(*this), Real(dir.norm()), pad, p.x(), p.y(), q.x(), q.y());
   }
   Real curvature_at(const V&) const { return 0; }
   V normal_at(const V&) const { return normal; }
