@@ -5,80 +5,10 @@
 #include "billiards/dynamics/magnetic_flight.hpp"
 
 #include <algorithm>
-#include <numeric>
-#include <stdexcept>
 
 namespace billiards::dynamics {
 
 using namespace geometry3;
-
-// ---------------------------------------------------------------- BVH
-
-namespace {
-constexpr int leaf_size = 4;
-}
-
-Bvh::Bvh(const std::vector<TriangleWall>& tris, double pad) {
-  order_.resize(tris.size());
-  std::iota(order_.begin(), order_.end(), 0);
-  nodes_.reserve(2 * tris.size() / leaf_size + 1);
-  if (!tris.empty()) build(tris, 0, int(tris.size()), pad);
-}
-
-int Bvh::build(const std::vector<TriangleWall>& tris, int first, int count, double pad) {
-  const int index = int(nodes_.size());
-  nodes_.emplace_back();
-  Vec3 lo = Vec3::Constant(INFINITY), hi = -lo, clo = lo, chi = hi;  // boxes of triangles, centroids
-  for (int i = first; i < first + count; ++i) {
-    const auto& p = tris[order_[i]].p;
-    const Vec3 centroid = (p[0] + p[1] + p[2]) / 3;
-    for (const Vec3& q : p) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
-    clo = clo.cwiseMin(centroid), chi = chi.cwiseMax(centroid);
-  }
-  nodes_[index].lo = lo - Vec3::Constant(pad);
-  nodes_[index].hi = hi + Vec3::Constant(pad);
-  if (count <= leaf_size) {
-    nodes_[index].first = first;
-    nodes_[index].count = count;
-    return index;
-  }
-  int axis;
-  (chi - clo).maxCoeff(&axis);
-  const auto key = [&](int t) { return tris[t].p[0][axis] + tris[t].p[1][axis] + tris[t].p[2][axis]; };
-  const int half = count / 2;
-  std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
-                   [&](int a, int b) { return key(a) < key(b); });
-  build(tris, first, half, pad);
-  const int right = build(tris, first + half, count - half, pad);
-  nodes_[index].right = right;
-  return index;
-}
-
-namespace {
-
-/// Parameter interval in which the ray x + τ v is inside the box (grown by `pad`), intersected
-/// with [0, t_max].  A zero velocity component is replaced by a tiny one of the same role: the
-/// slab then spans everything (particle between the planes) or nothing, with no 0·∞.
-struct SlabRay {
-  Vec3 x, inv;
-  double pad;
-  SlabRay(const Vec3& origin, const Vec3& v, double pad_) : x(origin), pad(pad_) {
-    for (int k = 0; k < 3; ++k) inv[k] = 1 / (v[k] != 0 ? v[k] : 1e-300);
-  }
-  bool hits(const Bvh::Node& n, double t_max, double& t_in) const {
-    double lo = 0, hi = t_max;
-    for (int k = 0; k < 3; ++k) {
-      double a = (n.lo[k] - pad - x[k]) * inv[k], b = (n.hi[k] + pad - x[k]) * inv[k];
-      if (a > b) std::swap(a, b);
-      lo = std::max(lo, a);
-      hi = std::min(hi, b);
-    }
-    t_in = lo;
-    return lo <= hi;
-  }
-};
-
-}  // namespace
 
 // ---------------------------------------------------------------- table
 
@@ -101,7 +31,11 @@ Table3::BasicTable(const Region3& region) : region_(region) {
       triangles.emplace_back(m->vertices[t[0]], m->vertices[t[1]], m->vertices[t[2]], slack);
   if (const auto* b = std::get_if<Ball>(&region.outer)) sphere(*b, true);
   for (const Ball& b : region.holes) sphere(b, false);
-  bvh_ = Bvh(triangles, 4 * slack);
+  std::vector<Bvh::Box> boxes;
+  boxes.reserve(triangles.size());
+  for (const TriangleWall& w : triangles)
+    boxes.push_back({w.p[0].cwiseMin(w.p[1]).cwiseMin(w.p[2]), w.p[0].cwiseMax(w.p[1]).cwiseMax(w.p[2])});
+  bvh_ = Bvh(boxes, 4 * slack);
   // Store the triangles in the BVH's leaf order: a leaf's triangles are then contiguous.
   std::vector<TriangleWall> sorted;
   sorted.reserve(triangles.size());
@@ -109,52 +43,19 @@ Table3::BasicTable(const Region3& region) : region_(region) {
   triangles = std::move(sorted);
 }
 
-/// Walks the BVH nearest box first along the ray `origin + τ dir` (τ after `t0`), boxes grown
-/// by `pad`, and keeps in `best` the earliest exit time `exit(triangle)` found.
+/// Walks the BVH along the ray `origin + τ dir` (τ after `t0`), boxes grown by `pad`, and
+/// keeps in `best` the earliest exit time `exit(triangle)` found.
 template <class Exit>
 void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best,
                               Exit exit) const {
   const auto& triangles = this->triangles();
-  if (triangles.empty()) return;
-  const SlabRay slab(origin, dir, pad);
-  const auto& nodes = bvh_.nodes();
-  struct Entry {
-    int node;
-    double t_in;  // where the ray enters its box
-  };
-  Entry stack[64];
-  int top = 0;
-  double t_in;
-  if (slab.hits(nodes[0], best.t - t0, t_in)) stack[top++] = {0, t_in};
-  while (top > 0) {
-    const Entry e = stack[--top];
-    if (t0 + e.t_in > best.t) continue;  // a nearer hit was found since it was pushed
-    const Bvh::Node& n = nodes[e.node];
-    if (n.count > 0) {
-      for (int i = n.first; i < n.first + n.count; ++i) {
-        const double t = exit(triangles[i], best.t);
-        if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
-      }
-      continue;
+  bvh_.walk(origin, dir, pad, best.t - t0, [&](int first, int count) {
+    for (int i = first; i < first + count; ++i) {
+      const double t = exit(triangles[i], best.t);
+      if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
     }
-    // Push the farther child first, so that the nearer one is searched first and `best`
-    // shrinks early.
-    const int left = e.node + 1;
-    double t_left, t_right;
-    const bool hit_left = slab.hits(nodes[left], best.t - t0, t_left);
-    const bool hit_right = slab.hits(nodes[n.right], best.t - t0, t_right);
-    if (hit_left && hit_right && t_left <= t_right) {
-      stack[top++] = {n.right, t_right};
-      stack[top++] = {left, t_left};
-    } else if (hit_left && hit_right) {
-      stack[top++] = {left, t_left};
-      stack[top++] = {n.right, t_right};
-    } else if (hit_left) {
-      stack[top++] = {left, t_left};
-    } else if (hit_right) {
-      stack[top++] = {n.right, t_right};
-    }
-  }
+    return best.t - t0;
+  });
 }
 
 namespace {

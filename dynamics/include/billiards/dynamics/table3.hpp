@@ -4,6 +4,7 @@
 // independent point-in-region test of geometry3.
 #pragma once
 
+#include "billiards/dynamics/bvh3.hpp"
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/random.hpp"
@@ -34,26 +35,6 @@ struct Tube3 {
   double pad;
 };
 
-/// Median-split BVH over triangles; boxes are padded by the walls' slack so that a ray
-/// within rounding of a triangle is never culled by its box.
-class Bvh {
- public:
-  struct Node {
-    Vec3 lo, hi;
-    int first = 0, count = 0;  // a leaf: triangles [first, first + count) of `order`
-    int right = 0;             // an inner node: left child is the next node, right child here
-  };
-  Bvh() = default;
-  Bvh(const std::vector<TriangleWall>& triangles, double pad);
-  const std::vector<Node>& nodes() const { return nodes_; }
-  const std::vector<int>& order() const { return order_; }
-
- private:
-  int build(const std::vector<TriangleWall>& tris, int first, int count, double pad);
-  std::vector<Node> nodes_;
-  std::vector<int> order_;
-};
-
 template <>
 class BasicTable<double, 3> : public WallSet<WallKinds3> {
  public:
@@ -80,7 +61,7 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   /// Is x in the closed region (the independent point-in-region test of geometry3)?
   bool contains(const Vec3& x) const { return geometry3::contains(region_, x); }
   const std::vector<PlaneWall>& planes() const { return walls<PlaneWall>(); }
-  /// (In the BVH's leaf order.)
+  /// (In the BVH's leaf order; the mesh's order is piece_of's.)
   const std::vector<TriangleWall>& triangles() const { return walls<TriangleWall>(); }
   const std::vector<SphereWall>& spheres() const { return walls<SphereWall>(); }
   std::pair<Vec3, Vec3> contact(const WallId& wall, const Vec3& p) const {
@@ -93,12 +74,12 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   double curvature_at(const WallId& wall, const Vec3& p) const {
     return visit(wall, [&](const auto& w) { return w.curvature_at(p); });
   }
-  /// The wall's position among all walls, kind by kind: planes, triangles (in BVH order),
-  /// spheres.
+  /// The wall's position among all walls, kind by kind: planes, triangles (in the mesh's
+  /// order), spheres.
   int piece_of(const WallId& wall) const {
     int before = 0;
     for_each_kind([&](const auto& walls, int kind) { before += kind < wall.kind ? int(walls.size()) : 0; });
-    return before + wall.index;
+    return before + (wall.kind == wall_kind3::triangle ? bvh_.order()[wall.index] : wall.index);
   }
   const geometry3::Region3& region() const { return region_; }
   const Vec3& lo() const { return lo_; }  // bounding box

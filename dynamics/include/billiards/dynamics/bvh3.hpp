@@ -1,0 +1,140 @@
+// The bounding-volume hierarchy over the triangles of a mesh that a 3-D table walks
+// (table3.cpp): built by the surface-area heuristic, eight children a node, their boxes
+// stored as floats rounded outward, walked nearest box first.
+#pragma once
+
+#include "billiards/geometry3/region3.hpp"
+
+#include <bit>
+#include <vector>
+
+namespace billiards::dynamics {
+
+using geometry3::Vec3;
+
+/// The boxes are grown by a pad (the walls' slack, so that a ray within rounding of a triangle
+/// is never culled by its box) and then rounded outward to floats: a stored box always holds
+/// the padded box in doubles.  A walk grows them again by its own pad (a tube's radius).
+class Bvh {
+ public:
+  static constexpr int width = 8;     // children of a node
+  static constexpr int max_leaf = 8;  // triangles of a leaf
+  struct Box {
+    Vec3 lo, hi;
+  };
+  /// A node's children, structure of arrays.  A child is an inner node (its index, ≥ 0) or a
+  /// leaf, ~(first · max_leaf + count − 1) for the triangles [first, first + count) of the
+  /// leaf order; an unused child has an empty box (lo = +∞, hi = −∞), which no ray enters.
+  struct alignas(64) Node {
+    float bound[2][3][width];  // [lo, hi][axis][child]
+    int child[width];
+  };
+
+  Bvh() = default;
+  /// Over one box per triangle, each grown by `pad`.
+  Bvh(const std::vector<Box>& boxes, double pad);
+  /// The triangles in leaf order: position i holds triangle order()[i].
+  const std::vector<int>& order() const { return order_; }
+
+  /// Walks the leaves whose boxes, grown by `pad`, the ray origin + τ dir enters for τ in
+  /// [0, tau_max], nearest box first: `tau_max = leaf(first, count)` for each, so that a leaf
+  /// may shrink the bound of the rest.
+  template <class Leaf>
+  void walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf) const;
+
+ private:
+  /// Binary nodes of the build, before they are gathered into nodes of `width`.
+  struct Split;
+  int build(std::vector<Split>& tree, const std::vector<Box>& boxes, int first, int count, int depth);
+  int gather(const std::vector<Split>& tree, int split, double pad);
+  static void prefetch(const Node& n) {
+    for (std::size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(reinterpret_cast<const char*>(&n) + line);
+  }
+
+  /// The binary build's depth bound (from depth 32 on it splits at the median: at most 31 more
+  /// levels), and with it the walk's stack: each node popped pushes at most `width` children.
+  static constexpr int max_depth = 64, stack_size = (width - 1) * max_depth + 1;
+  std::vector<Node> nodes_;
+  std::vector<int> order_;
+};
+
+namespace detail {
+
+/// Two doubles in one SSE2 register (GCC's and Clang's vector extension): the project's flags
+/// leave the vectorizing of the children's slab tests to the code (no SLP vectorizer, no wider
+/// registers by default).
+using DoublePair = double __attribute__((vector_size(2 * sizeof(double))));
+
+/// The slab test of one ray against the boxes of a node's children, in doubles (a float
+/// converts exactly).  The side of each slab the ray enters through is chosen by the sign of
+/// its direction, so that an empty box is never entered; a zero component is replaced by a
+/// tiny one of the same role: the slab then spans everything (origin between the planes) or
+/// nothing, with no 0·∞.
+struct BvhRay {
+  Vec3 x, inv;
+  int near[3];     // 0: the ray enters the slab through lo, 1: through hi
+  double grow[3];  // the pad, signed to grow the box on the near side (and, negated, the far)
+  BvhRay(const Vec3& origin, const Vec3& dir, double pad) : x(origin) {
+    for (int k = 0; k < 3; ++k) {
+      inv[k] = 1 / (dir[k] != 0 ? dir[k] : 1e-300);
+      near[k] = inv[k] < 0;
+      grow[k] = near[k] ? -pad : pad;
+    }
+  }
+  /// Bit i set: the ray is inside child i's box for some τ in [0, tau_max], from τ = t_in[i].
+  unsigned enter(const Bvh::Node& n, double tau_max, double (&t_in)[Bvh::width]) const {
+    unsigned mask = 0;
+    for (int i = 0; i < Bvh::width; i += 2) {
+      DoublePair in = {0, 0}, out = {tau_max, tau_max};
+      for (int k = 0; k < 3; ++k) {
+        const float *a = n.bound[near[k]][k] + i, *b = n.bound[1 - near[k]][k] + i;
+        const DoublePair ta = (DoublePair{a[0], a[1]} - grow[k] - x[k]) * inv[k];
+        const DoublePair tb = (DoublePair{b[0], b[1]} + grow[k] - x[k]) * inv[k];
+        in = in < ta ? ta : in;
+        out = tb < out ? tb : out;
+      }
+      const auto entered = in <= out;
+      t_in[i] = in[0], t_in[i + 1] = in[1];
+      mask |= unsigned(entered[0] & 1) << i | unsigned(entered[1] & 1) << (i + 1);
+    }
+    return mask;
+  }
+};
+
+}  // namespace detail
+
+template <class Leaf>
+void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf) const {
+  if (nodes_.empty()) return;
+  const detail::BvhRay ray(origin, dir, pad);
+  struct Entry {
+    int child;
+    double t_in;  // where the ray enters its box
+  };
+  Entry stack[stack_size];
+  int top = 0;
+  stack[top++] = {0, 0.0};
+  while (top > 0) {
+    const Entry e = stack[--top];
+    if (e.t_in > tau_max) continue;  // a nearer hit was found since it was pushed
+    if (e.child < 0) {
+      const int code = ~e.child;
+      tau_max = leaf(code / max_leaf, code % max_leaf + 1);
+      continue;
+    }
+    const Node& node = nodes_[e.child];
+    double t_in[width];
+    // Push the children entered, farthest first (insertion by t_in), so that the nearest is
+    // searched first and the bound shrinks early; the inner ones are fetched meanwhile.
+    const int bottom = top;
+    for (unsigned mask = ray.enter(node, tau_max, t_in); mask; mask &= mask - 1) {
+      const int i = std::countr_zero(mask);
+      if (node.child[i] >= 0) prefetch(nodes_[node.child[i]]);
+      int j = top++;
+      for (; j > bottom && stack[j - 1].t_in < t_in[i]; --j) stack[j] = stack[j - 1];
+      stack[j] = {node.child[i], t_in[i]};
+    }
+  }
+}
+
+}  // namespace billiards::dynamics

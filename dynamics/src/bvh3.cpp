@@ -1,0 +1,161 @@
+// The triangle BVH's build: a binary tree split by the binned surface-area heuristic, whose
+// nodes are then gathered four at a time (Wald, "On fast construction of SAH-based bounding
+// volume hierarchies", 2007; Embree's and pbrt's BVHs).
+#include "billiards/dynamics/bvh3.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace billiards::dynamics {
+
+namespace {
+
+constexpr int bins = 16;
+/// The cost of a box test relative to a triangle test, in the surface-area heuristic.
+constexpr double traversal_cost = 2;
+/// The binary depth from which the build splits at the median instead (any input then keeps
+/// the depth under max_depth).
+constexpr int sah_depth = 32;
+
+Bvh::Box empty_box() { return {Vec3::Constant(INFINITY), Vec3::Constant(-INFINITY)}; }
+
+void grow(Bvh::Box& b, const Bvh::Box& c) {
+  b.lo = b.lo.cwiseMin(c.lo);
+  b.hi = b.hi.cwiseMax(c.hi);
+}
+
+double half_area(const Bvh::Box& b) {
+  const Vec3 d = b.hi - b.lo;
+  return d.x() * d.y() + d.y() * d.z() + d.z() * d.x();
+}
+
+Vec3 centroid(const Bvh::Box& b) { return (b.lo + b.hi) / 2; }
+
+/// The largest float ≤ x, and the smallest ≥ x.
+float float_below(double x) {
+  const float f = float(x);
+  return double(f) > x ? std::nextafter(f, -INFINITY) : f;
+}
+float float_above(double x) {
+  const float f = float(x);
+  return double(f) < x ? std::nextafter(f, INFINITY) : f;
+}
+
+}  // namespace
+
+struct Bvh::Split {
+  Box box;
+  int first, count;         // its triangles, [first, first + count) of order_
+  int left = -1, right = -1;  // children in the tree; −1 for a leaf
+};
+
+Bvh::Bvh(const std::vector<Box>& boxes, double pad) {
+  order_.resize(boxes.size());
+  std::iota(order_.begin(), order_.end(), 0);
+  if (boxes.empty()) return;
+  std::vector<Split> tree;
+  tree.reserve(2 * boxes.size());
+  build(tree, boxes, 0, int(boxes.size()), 0);
+  nodes_.reserve(tree.size() / 2);
+  gather(tree, 0, pad);
+}
+
+/// Splits order_[first, first + count) where the binned surface-area heuristic puts it (or
+/// makes a leaf when that is cheaper); returns the index of its node in `tree`.
+int Bvh::build(std::vector<Split>& tree, const std::vector<Box>& boxes, int first, int count, int depth) {
+  const int index = int(tree.size());
+  tree.push_back({empty_box(), first, count});
+  Box centroids = empty_box();
+  for (int i = first; i < first + count; ++i) {
+    grow(tree[index].box, boxes[order_[i]]);
+    const Vec3 c = centroid(boxes[order_[i]]);
+    grow(centroids, {c, c});
+  }
+  if (count == 1) return index;
+  int axis;
+  const double extent = (centroids.hi - centroids.lo).maxCoeff(&axis);
+  const auto bin_of = [&](int t) {
+    return std::min(bins - 1, int(bins * (centroid(boxes[t])[axis] - centroids.lo[axis]) / extent));
+  };
+  int mid = first + count / 2;  // the median, where the heuristic cannot split
+  if (extent > 0 && depth < sah_depth) {
+    Box bin_box[bins];
+    int bin_count[bins] = {};
+    std::fill_n(bin_box, bins, empty_box());
+    for (int i = first; i < first + count; ++i) {
+      const int b = bin_of(order_[i]);
+      grow(bin_box[b], boxes[order_[i]]);
+      ++bin_count[b];
+    }
+    // cost[s]: the heuristic's cost of splitting before bin s, its right side summed first.
+    double cost[bins] = {};
+    Box right = empty_box();
+    for (int s = bins - 1, n = 0; s > 0; --s) {
+      grow(right, bin_box[s]);
+      n += bin_count[s];
+      cost[s] = n * half_area(right);
+    }
+    Box left = empty_box();
+    int best = 1;
+    for (int s = 1, n = 0; s < bins; ++s) {
+      grow(left, bin_box[s - 1]);
+      n += bin_count[s - 1];
+      cost[s] += n * half_area(left);
+      if (cost[s] < cost[best]) best = s;
+    }
+    const double area = half_area(tree[index].box);
+    if (count <= max_leaf && count * area <= traversal_cost * area + cost[best]) return index;
+    mid = int(std::partition(order_.begin() + first, order_.begin() + first + count,
+                             [&](int t) { return bin_of(t) < best; }) -
+              order_.begin());
+  } else if (count <= max_leaf) {
+    return index;
+  } else {
+    const auto key = [&](int t) { return centroid(boxes[t])[axis]; };
+    std::nth_element(order_.begin() + first, order_.begin() + mid, order_.begin() + first + count,
+                     [&](int a, int b) { return key(a) < key(b); });
+  }
+  const int left = build(tree, boxes, first, mid - first, depth + 1);
+  const int right = build(tree, boxes, mid, first + count - mid, depth + 1);
+  tree[index].left = left, tree[index].right = right;
+  return index;
+}
+
+/// The node of `width` children under `split`: its two children (a leaf: itself, the root of
+/// a tree of one leaf), then repeatedly the inner child of largest surface area replaced by
+/// its own two.
+int Bvh::gather(const std::vector<Split>& tree, int split, double pad) {
+  int children[width] = {split};
+  int n = 1;
+  if (tree[split].left >= 0) children[0] = tree[split].left, children[n++] = tree[split].right;
+  while (n < width) {
+    int widest = -1;
+    for (int i = 0; i < n; ++i)
+      if (tree[children[i]].left >= 0 &&
+          (widest < 0 || half_area(tree[children[i]].box) > half_area(tree[children[widest]].box)))
+        widest = i;
+    if (widest < 0) break;
+    const Split& s = tree[children[widest]];
+    children[widest] = s.left;
+    children[n++] = s.right;
+  }
+  const int index = int(nodes_.size());
+  nodes_.emplace_back();
+  for (int i = 0; i < width; ++i) {
+    const Box box = i < n ? tree[children[i]].box : empty_box();
+    for (int k = 0; k < 3; ++k) {
+      nodes_[index].bound[0][k][i] = float_below(box.lo[k] - pad);
+      nodes_[index].bound[1][k][i] = float_above(box.hi[k] + pad);
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const Split& s = tree[children[i]];
+    // (Not `nodes_[index].child[i] = gather(...)`: gather may move nodes_.)
+    const int child = s.left >= 0 ? gather(tree, children[i], pad) : ~(s.first * max_leaf + s.count - 1);
+    nodes_[index].child[i] = child;
+  }
+  return index;
+}
+
+}  // namespace billiards::dynamics

@@ -1,0 +1,128 @@
+// The triangle BVH never culls a triangle a flight can hit: its first hit is that of every
+// triangle tried in turn, bit for bit, for straight rays (from inside the mesh, from the walls
+// after a bounce, and aimed exactly at vertices and edges, where the float boxes are tightest),
+// for helices (boxes grown by the cyclotron radius) and for driven flights (grown by the
+// oscillation's amplitude); and the walls keep the mesh's own numbering.
+#include "billiards/dynamics/magnetic_flight.hpp"
+#include "billiards/dynamics/table3.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+using namespace billiards;
+using namespace billiards::dynamics;
+
+namespace {
+
+geometry3::Shape3 mesh_shape(const std::string& name) {
+  return geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/" + name + ".yaml");
+}
+
+/// The earliest exit through any triangle, each asked up to `t_end`, without the BVH.
+template <class Flight>
+Hit3 every_triangle(const Table3& table, const Flight& flight, const typename Flight::State& s, double t_end) {
+  Hit3 best;
+  best.t = t_end;
+  const auto& triangles = table.triangles();
+  for (int i = 0; i < int(triangles.size()); ++i) {
+    const double t = flight.exit_time(s, triangles[i], t_end);
+    if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
+  }
+  return best;
+}
+
+/// The BVH's hit is the scan's: the same time bit for bit, through the same triangle or one
+/// crossed at that very time (a tie at a shared edge or vertex).
+template <class Flight>
+void check_first_hit(const Table3& table, const Flight& flight, const typename Flight::State& s, double t_end,
+                     int& compared) {
+  const auto hit = table.collision(flight, s, t_end);
+  const Hit3 scan = every_triangle(table, flight, s, t_end);
+  REQUIRE(hit.found() == scan.found());
+  if (!hit.found()) return;
+  CHECK(hit.t == scan.t);
+  if (hit.wall != scan.wall) CHECK(flight.exit_time(s, table.triangles()[hit.wall.index], t_end) == scan.t);
+  ++compared;
+}
+
+Vec3 random_direction(ParticleRng& rng) {
+  const double z = 2 * rng.uniform() - 1, phi = 2 * geometry::pi * rng.uniform();
+  const double rho = std::sqrt(1 - z * z);
+  return {rho * std::cos(phi), rho * std::sin(phi), z};
+}
+
+}  // namespace
+
+TEST_CASE("the BVH finds the first hit of every triangle tried in turn: rays, rays through vertices and edges") {
+  for (const char* name : {"l-prism", "bumpy-100k"}) {
+    INFO(name);
+    const auto shape = mesh_shape(name);
+    const Table3 table(shape.region);
+    const auto& triangles = table.triangles();
+    const FreeFlight3 flight;
+    ParticleRng rng(7, 0);
+    int compared = 0;
+    // Along trajectories: from inside, then from each wall after a bounce.
+    for (int particle = 0; particle < 10; ++particle) {
+      State3 s = sample_microcanonical(table, 1.0, rng);
+      for (int k = 0; k < 100; ++k) {
+        check_first_hit(table, flight, s, never, compared);
+        bounce(flight, s, table.collision(flight, s));
+      }
+    }
+    // From inside through a vertex, the midpoint of an edge or a random point of an edge.
+    for (int k = 0; k < 1500; ++k) {
+      State3 s = sample_microcanonical(table, 1.0, rng);
+      const auto& p = triangles[std::size_t(rng.uniform() * double(triangles.size()))].p;
+      const int a = k % 3, b = (a + 1) % 3;
+      const double along = k % 5 == 0 ? 0.0 : k % 5 == 1 ? 0.5 : rng.uniform();
+      s.v = p[a] + along * (p[b] - p[a]) - s.x;
+      check_first_hit(table, flight, s, never, compared);
+    }
+    CHECK(compared == 2500);
+  }
+}
+
+TEST_CASE("the BVH grown by a tube finds the first hit of every triangle: helices and driven flights") {
+  for (const char* name : {"l-prism", "bumpy-100k"}) {
+    INFO(name);
+    const auto shape = mesh_shape(name);
+    const Table3 table(shape.region);
+    const bool big = table.triangles().size() > 1000;
+    ParticleRng rng(8, 0);
+    int compared = 0;
+    // Helices: a cyclotron radius about a tenth and a fiftieth of the mesh (the tube's pad).
+    for (const double rc : {big ? 0.1 : 0.5, big ? 0.02 : 0.1}) {
+      const MagneticFlight3 flight{random_direction(rng) / rc};
+      State3 s = sample_microcanonical(table, 1.0, rng);
+      for (int k = 0; k < (big ? 6 : 40); ++k) {
+        check_first_hit(table, flight, s, s.t + 20, compared);
+        bounce(flight, s, table.collision(flight, s, s.t + 20));
+      }
+    }
+    // The drive at low and high frequency: δ = |F|/(mω²) from 0.25 to 1e-5.
+    for (const double omega : {2 * geometry::pi, 320 * geometry::pi}) {
+      const PeriodicDriveFlight3 flight{10 * random_direction(rng), omega, 2 * geometry::pi * rng.uniform()};
+      auto s = flight.start(sample_microcanonical(table, 1.0, rng));
+      for (int k = 0; k < (big ? 6 : 40); ++k) {
+        check_first_hit(table, flight, s, never, compared);
+        bounce(flight, s, table.collision(flight, s));
+      }
+    }
+    CHECK(compared == (big ? 24 : 160));
+  }
+}
+
+TEST_CASE("a mesh's triangles are numbered in the mesh's order (Table3::piece_of), whatever the BVH's order") {
+  const auto shape = mesh_shape("bumpy-100k");
+  const Table3 table(shape.region);
+  const auto& mesh = std::get<geometry3::TriangleMesh>(shape.region.outer);
+  REQUIRE(table.triangles().size() == mesh.triangles.size());
+  for (int i = 0; i < int(table.triangles().size()); ++i) {
+    const auto& face = mesh.triangles[std::size_t(table.piece_of({wall_kind3::triangle, i}))];
+    for (int k = 0; k < 3; ++k) REQUIRE(table.triangles()[i].p[k] == mesh.vertices[face[k]]);
+  }
+}
