@@ -459,7 +459,7 @@ LANES void wall_windows(const Quiver& q, const Walls& walls, Pack horizon, Mask 
   } else {
     const PlaneGapLanes<Pack> g = plane_gap_of(q, wall);
     found[0] = window<PackLanes>(g, q.lanes(), horizon, live), found[1].open = Mask{};
-    slope[0] = slope[1] = slope_sign<PackLanes>(g, q.lanes(), horizon, horizon, horizon);
+    slope[0] = slope[1] = slope_sign<PackLanes>(g, q.lanes());
   }
   for (int j = 0; j < 2; ++j) {
     const int slot = 2 * w + j;
@@ -473,7 +473,7 @@ LANES void wall_windows(const Quiver& q, const Walls& walls, Pack horizon, Mask 
 template <Mix mix>
 LANES Pack slope_sign(const Quiver& q, const Wall& w, const Kinds<mix>& kinds, Pack start, Pack end, Pack margin) {
   return kinds.by_kind([&]() LANES_LAMBDA { return slope_sign<PackLanes>(sphere_gap_of(q, w), q.lanes(), start, end, margin); },
-                       [&]() LANES_LAMBDA { return slope_sign<PackLanes>(plane_gap_of(q, w), q.lanes(), start, end, margin); });
+                       [&]() LANES_LAMBDA { return slope_sign<PackLanes>(plane_gap_of(q, w), q.lanes()); });
 }
 
 /// may_meet_span(wall, guide(start), guide(end), δ): can the particle reach the wall's span?

@@ -258,11 +258,10 @@ template <class L, class FQ, class Num = typename L::Num, class Truth = typename
   return clip_window<L>(live, start, end, margin, L::both(rising, L::negate(still)), horizon);
 }
 
-/// +1 when f' = nu + n·(F/mω) sin θ > 0 throughout the window, −1 when f' < 0, 0 when the bounds
-/// cannot tell.
+/// +1 when f' = nu + n·(F/mω) sin θ > 0 throughout the flight, −1 when f' < 0, 0 when the bounds
+/// cannot tell: the same in every window.
 template <class L, class FQ, class Num = typename L::Num>
-[[gnu::always_inline]] inline Num slope_sign(const PlaneGapLanes<Num>& g, const GuideLanes<FQ>& q, const Num&,
-                                             const Num&, const Num&) {
+[[gnu::always_inline]] inline Num slope_sign(const PlaneGapLanes<Num>& g, const GuideLanes<FQ>& q) {
   const Num eps = L::eps(), wobble = g.n_w * (L::splat(1) + L::splat(16) * eps) + L::splat(8) * eps * q.speed;
   return L::select(g.nu > wobble, L::splat(1), L::select(g.nu < L::neg(wobble), L::splat(-1), L::splat(0)));
 }

@@ -8,9 +8,7 @@
 
 #include <boost/math/constants/constants.hpp>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <type_traits>
 #include <utility>
 

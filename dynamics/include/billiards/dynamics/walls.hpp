@@ -123,7 +123,7 @@ struct PlaneGap {
   int windows(const Real& horizon, Window<Real>* out) const {
     return append_window(0, out, window<L>(g, q.lanes(), horizon, true));
   }
-  int slope_sign(const Window<Real>& w) const { return int(scan::slope_sign<L>(g, q.lanes(), w.start, w.end, w.margin)); }
+  int slope_sign(const Window<Real>&) const { return int(scan::slope_sign<L>(g, q.lanes())); }
 };
 
 /// The same for the circle (2-D) or sphere (3-D) of centre c and radius r, the region inside it
