@@ -16,9 +16,11 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <utility>
 
 namespace billiards::cli {
 
@@ -78,6 +80,18 @@ std::string numerical_table(const analysis::FokkerPlanckSolution& s) {
   return csv;
 }
 
+/// Wall-clock seconds since the last call (or the construction).
+class Lap {
+ public:
+  double operator()() {
+    const auto now = std::chrono::steady_clock::now();
+    return std::chrono::duration<double>(now - std::exchange(last_, now)).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 /// The simulation against the theory at one recorded time t.
 struct Fit {
   double t = 0;
@@ -89,18 +103,17 @@ struct Fit {
   analysis::HistogramL1 l1;                // Σ|p̂ − p| over its bins, and its noise level
 };
 
-/// The fit at record time k from the run's energies at every record time.
+/// The fit at record time k from the run's energies and moments at every record time.
 Fit fit_at(const RunOutcome& run, std::size_t k, const Law& law, std::size_t bins) {
-  const auto& by_time = run.by_time;
   const auto& c = *run.prediction;
   const double t = run.scene.record_times[k];
   Fit f;
   f.t = t;
-  f.dE = analysis::sample_moments(energy_changes(by_time, k));
+  f.dE = run.changes[k];
   f.g1_t = c.g1 * t;
   f.g2_t = c.g2 * t;
   f.fp = law;
-  const auto& E = by_time[k];
+  const auto E = run.by_time[k];
   f.ks = analysis::ks_distance(E, law.cdf);
   f.ks_p = analysis::ks_p_value(f.ks, E.size());
   const auto [lo, hi] = std::minmax_element(E.begin(), E.end());
@@ -153,6 +166,7 @@ void print_fits(const std::vector<Fit>& fits, double E0) {
 }
 
 struct CompareArgs : RunArgs {
+  bool plot = true;  // comparison.png
   std::size_t bins = 60;
   int cells = 1000;  // of the numerical Fokker–Planck solution (a potential)
 };
@@ -172,6 +186,7 @@ void compare(const CompareArgs& args) {
   if (!chaos.is_null() && ranks().root()) print_ergodicity(chaos);
   const auto run = run_ensemble(scene, args);
   if (!run || !ranks().root()) return;
+  Lap lap;
   // One record time per thread: each fit reads the shared result and writes its own entry.
   std::vector<Fit> fits(scene.record_times.size() - 1);
   const int threads = args.threads > 0 ? args.threads : std::min(omp_get_max_threads(), max_threads);
@@ -179,6 +194,7 @@ void compare(const CompareArgs& args) {
   for (std::size_t k = 1; k < scene.record_times.size(); ++k) fits[k - 1] = fit_at(*run, k, fp.laws[k - 1], args.bins);
   nlohmann::json times = nlohmann::json::array();
   for (const auto& f : fits) times.push_back(to_json(f, scene.energy));
+  const double fitting = lap();
 
   OutputDir out(scene.output_dir);
   write_run_files(out, *run, args);
@@ -187,10 +203,14 @@ void compare(const CompareArgs& args) {
                                      {"prediction", *run->prediction}, {"chaos_check", chaos}, {"bins", args.bins},
                                      {"times", times}});
   out.write_text("comparison.csv", histogram_csv(fits));
-  run_python(script_path("plot_compare.py"), {out.path("").string()});
+  const double writing = lap();
+  if (args.plot) run_python(script_path("plot_compare.py"), {out.path("").string()});
+  const double drawing = lap();
   out.commit();
   print_fits(fits, scene.energy);
   report(*run);
+  fmt::print("after the simulation: statistics {:.3g} s, files {:.3g} s, figure {:.3g} s (wall clock)\n",
+             run->statistics_seconds + fitting, writing, drawing);
 }
 
 }  // namespace
@@ -200,6 +220,8 @@ void add_compare(CLI::App& app) {
       "compare", "Run an ensemble and set it against the Fokker-Planck prediction at every recorded time");
   auto args = std::make_shared<CompareArgs>();
   add_run_options(cmd, *args);
+  cmd->add_flag("!--no-plot", args->plot,
+                "no comparison.png (scripts/plot_compare.py OUT draws it later from the files written)");
   cmd->add_option("--bins", args->bins, "histogram bins per recorded time")->check(CLI::Range(2, 100000));
   cmd->add_option("--cells", args->cells,
                   "energy cells of the numerical Fokker-Planck solution, used with a potential (default 1000)")

@@ -95,11 +95,11 @@ class Checkpoint {
 
 /// Refuses a run whose arrays (or threads' stacks) would not fit in memory, before allocating:
 /// per particle its log, its state, its energies at the m record times twice (as run, and by
-/// record time for the statistics), and on each thread two doubles (compare's fit at one record
-/// time: the energy changes and the KS search's grouped copy).
+/// record time for the statistics), and on each thread one double (compare's fit at one record
+/// time: the KS search's grouped copy).
 void require_memory(const Scene& scene, int threads) {
   const double n = double(scene.particles), m = double(scene.record_times.size());
-  const double per_particle = 2 * m * sizeof(double) + threads * 2 * sizeof(double) + sizeof(dynamics::ParticleLog) +
+  const double per_particle = 2 * m * sizeof(double) + threads * sizeof(double) + sizeof(dynamics::ParticleLog) +
                               sizeof(dynamics::State3);
   const double table = 3000 * m * 24;  // fokker-planck.csv, built in memory
   rlimit stack{}, space{};
@@ -118,8 +118,7 @@ void require_memory(const Scene& scene, int threads) {
 }
 
 /// Mean and variance of ΔE with their standard errors.
-nlohmann::json delta_stats(const std::vector<double>& dE) {
-  const auto m = analysis::sample_moments(dE);
+nlohmann::json delta_stats(const analysis::SampleMoments& m) {
   return {{"mean_dE", m.mean}, {"var_dE", m.variance}, {"se_mean_dE", m.se_mean}, {"se_var_dE", m.se_variance}};
 }
 
@@ -176,13 +175,13 @@ EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& 
 }
 
 nlohmann::json summarize(const Scene& scene, const std::optional<analysis::Coefficients>& prediction,
-                         const EnsembleResult& r, const std::vector<std::vector<double>>& by_time, double seconds,
+                         const EnsembleResult& r, const std::vector<analysis::SampleMoments>& changes, double seconds,
                          const RunArgs& args) {
   const std::size_t m = scene.record_times.size();
   nlohmann::json per_time = nlohmann::json::array();
   for (std::size_t k = 0; k < m; ++k) {
     const double t = scene.record_times[k];
-    nlohmann::json s = delta_stats(energy_changes(by_time, k));
+    nlohmann::json s = delta_stats(changes[k]);
     s["t"] = t;
     if (prediction) {
       s["g1_t"] = prediction->g1 * t;
@@ -307,26 +306,35 @@ dynamics::Scene load_scene(const RunArgs& args) {
 namespace {
 
 /// E(t_k) of every particle that did not escape, a column per record time k (m of them), in
-/// particle order: one sweep over the particles' rows, where EnsembleResult::energies_at reads
-/// the whole table once per record time (a cache line per particle each time: at N = 10⁶ and
-/// 21 record times, more than the statistics themselves).
-std::vector<std::vector<double>> energies_by_time(const EnsembleResult& r, std::size_t m) {
-  std::vector<std::vector<double>> E(m);
-  const std::size_t kept = r.logs.size() - r.escapes();
-  for (auto& column : E) column.reserve(kept);
-  for (std::size_t i = 0; i < r.logs.size(); ++i)
+/// particle order: the particles' rows are swept once, by `threads` threads, where
+/// EnsembleResult::energies_at reads the whole table once per record time (a cache line per
+/// particle each time: at N = 10⁶ and 21 record times, more than the statistics themselves).
+EnergyColumns energies_by_time(const EnsembleResult& r, std::size_t m, int threads) {
+  const std::size_t n = r.logs.size();
+  std::vector<std::size_t> place(n);  // a kept particle's row in the columns
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < n; ++i) place[i] = kept, kept += !r.logs[i].escaped;
+  if (kept < 2)
+    throw std::runtime_error(fmt::format("{} of {} particles escaped the region: too few left for statistics",
+                                         n - kept, n));
+  EnergyColumns E(kept, m);
+#pragma omp parallel for schedule(static) num_threads(threads)
+  for (std::size_t i = 0; i < n; ++i)
     if (!r.logs[i].escaped)
-      for (std::size_t k = 0; k < m; ++k) E[k].push_back(r.energies[i * m + k]);
+      for (std::size_t k = 0; k < m; ++k) E[k][place[i]] = r.energies[i * m + k];
   return E;
 }
 
-}  // namespace
-
-std::vector<double> energy_changes(const std::vector<std::vector<double>>& by_time, std::size_t k) {
-  std::vector<double> dE(by_time[k].size());
-  for (std::size_t i = 0; i < dE.size(); ++i) dE[i] = by_time[k][i] - by_time[0][i];
-  return dE;
+/// The moments of ΔE = E(t_k) − E(t_0) at every record time, a record time per thread:
+/// EnsembleResult::energy_changes's differences, to the bit.
+std::vector<analysis::SampleMoments> change_moments(const EnergyColumns& by_time, std::size_t m, int threads) {
+  std::vector<analysis::SampleMoments> moments(m);
+#pragma omp parallel for schedule(dynamic) num_threads(threads)
+  for (std::size_t k = 0; k < m; ++k) moments[k] = analysis::sample_moments_of_differences(by_time[k], by_time[0]);
+  return moments;
 }
+
+}  // namespace
 
 std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_in) {
   RunArgs args = args_in;
@@ -334,7 +342,7 @@ std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_i
   require_memory(scene, args.threads);
   fmt::print("scene {}: {} particles on '{}', force {}, t = 0 .. {}\n", scene.file, scene.particles,
              scene.shape_name(), scene.force.name(), scene.time);
-  RunOutcome run{scene, analysis::prediction_of(scene), {}, {}, {}};
+  RunOutcome run{scene, analysis::prediction_of(scene), {}, {}, {}, {}, 0};
   if (run.prediction) print_prediction(*run.prediction, scene.time);
   double seconds = 0;
   try {
@@ -344,8 +352,11 @@ std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_i
                scene.output_dir);
     return std::nullopt;
   }
-  run.by_time = energies_by_time(run.result, scene.record_times.size());
-  run.summary = summarize(scene, run.prediction, run.result, run.by_time, seconds, args);
+  const auto start = std::chrono::steady_clock::now();
+  run.by_time = energies_by_time(run.result, scene.record_times.size(), args.threads);
+  run.changes = change_moments(run.by_time, scene.record_times.size(), args.threads);
+  run.statistics_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.summary = summarize(scene, run.prediction, run.result, run.changes, seconds, args);
   return run;
 }
 

@@ -6,13 +6,16 @@
 #include "output.hpp"
 
 #include "billiards/analysis/coefficients.hpp"
+#include "billiards/analysis/statistics.hpp"
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/scene.hpp"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -40,16 +43,29 @@ void add_run_options(CLI::App* cmd, RunArgs& args);
 /// The scene with the command line's overrides applied.
 dynamics::Scene load_scene(const RunArgs& args);
 
+/// E(t_k) of the particles that did not escape, a column per record time k, in one block left
+/// uninitialized until the threads that fill it touch its pages.
+class EnergyColumns {
+ public:
+  EnergyColumns() = default;
+  EnergyColumns(std::size_t rows, std::size_t columns) : rows_(rows), data_(new double[rows * columns]) {}
+  std::span<double> operator[](std::size_t k) { return {data_.get() + k * rows_, rows_}; }
+  std::span<const double> operator[](std::size_t k) const { return {data_.get() + k * rows_, rows_}; }
+
+ private:
+  std::size_t rows_ = 0;
+  std::unique_ptr<double[]> data_;
+};
+
 struct RunOutcome {
   dynamics::Scene scene;
   std::optional<analysis::Coefficients> prediction;
   dynamics::EnsembleResult result;
-  std::vector<std::vector<double>> by_time;  // E(t_k) of every particle that did not escape, by k
-  nlohmann::json summary;                    // summary.json
+  EnergyColumns by_time;                         // E(t_k) of every particle that did not escape, by k
+  std::vector<analysis::SampleMoments> changes;  // of ΔE = E(t_k) − E(t_0) over by_time, by k
+  nlohmann::json summary;                        // summary.json
+  double statistics_seconds = 0;                 // wall clock of by_time and changes
 };
-
-/// E(t_k) − E(t_0) from RunOutcome::by_time: EnsembleResult::energy_changes(k, m), to the bit.
-std::vector<double> energy_changes(const std::vector<std::vector<double>>& by_time, std::size_t k);
 
 /// Prints the prediction, runs the ensemble (resuming from a checkpoint) and summarizes it;
 /// nothing if --max-chunks stopped it first.

@@ -2,6 +2,7 @@
 // its exact moments and CDF, and the finite-volume solver against it.
 #include "billiards/analysis.hpp"
 
+#include <boost/math/distributions/non_central_chi_squared.hpp>
 #include <boost/math/special_functions/bessel.hpp>
 #include <catch2/catch.hpp>
 
@@ -87,6 +88,23 @@ TEST_CASE("exact CDF agrees with quadrature of eta") {
         INFO("d = " << d << ", s = " << s << ", E = " << E);
         const double by_quadrature = integrate_eta(s, d, E, [](double) { return 1.0; });
         CHECK(analysis::fokker_planck_cdf(E, s, E0, d) == Approx(by_quadrature).epsilon(1e-7));
+      }
+    }
+  }
+}
+
+TEST_CASE("exact CDF in double: Boost's CDF carried through long double to 1e-14, narrow and wide laws") {
+  // s from compare's first record times (a narrow law, λ ~ 10³) to wide ones.
+  for (int d : {2, 3}) {
+    for (double s : {0.0034, 0.07, 1.0, 10.0}) {
+      const double c = 2.0 * (d + 1) / s;
+      const boost::math::non_central_chi_squared promoted(2.0 * d, 2 * c * std::sqrt(E0));
+      const auto m = analysis::fokker_planck_exact_moments(s, E0, d);
+      for (double z = -4; z <= 4; z += 0.25) {
+        const double E = m.mean + z * std::sqrt(m.variance);
+        if (E <= 0) continue;
+        INFO("d = " << d << ", s = " << s << ", E = " << E);
+        CHECK(std::abs(analysis::fokker_planck_cdf(E, s, E0, d) - boost::math::cdf(promoted, 2 * c * std::sqrt(E))) < 1e-14);
       }
     }
   }

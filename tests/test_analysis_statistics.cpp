@@ -55,6 +55,22 @@ TEST_CASE("sample moments by hand, and unaffected by a large offset") {
   CHECK(m.variance == Approx(12.5).epsilon(1e-9));
 }
 
+TEST_CASE("moments of differences: those of the differences stored, to the bit; unequal sizes refused") {
+  // x − y = 1, 2, 3, 4, 10 (the case above) with y far from zero and not a multiple of it.
+  const std::vector<double> y{1e6 + 0.1, -3.3, 7.7e3, 0.25, -1e5 - 0.7};
+  std::vector<double> x(y.size()), d(y.size());
+  const double by_hand[] = {1, 2, 3, 4, 10};
+  for (std::size_t i = 0; i < y.size(); ++i) x[i] = y[i] + by_hand[i], d[i] = x[i] - y[i];
+  const auto m = analysis::sample_moments_of_differences(x, y), stored = analysis::sample_moments(d);
+  CHECK(m.count == 5);
+  CHECK(m.mean == stored.mean);
+  CHECK(m.variance == stored.variance);
+  CHECK(m.se_mean == stored.se_mean);
+  CHECK(m.se_variance == stored.se_variance);
+  CHECK(m.variance == Approx(12.5).epsilon(1e-9));
+  CHECK_THROWS_AS(analysis::sample_moments_of_differences(x, std::vector<double>(4)), std::invalid_argument);
+}
+
 TEST_CASE("standard errors equal the spread of replicate means and variances (exponential, n = 100)") {
   // For Exp(1), μ4 = 9σ⁴: the variance's standard error is twice the Gaussian √(2/(n−1)) σ²,
   // so a Gaussian-only formula would fail here.

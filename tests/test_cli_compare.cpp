@@ -62,6 +62,26 @@ TEST_CASE("compare at high omega: the distribution is the Fokker-Planck one once
   CHECK(late["n"].get<std::size_t>() == n);
 }
 
+TEST_CASE("compare --no-plot: the same numbers and files but the figure, which plot_compare.py draws afterwards") {
+  const auto dir = scratch("compare-no-plot");
+  const std::string run = "compare scenes/clover-driven.yaml --omega 320*pi --particles 2000 --time 5 --record 1 "
+                          "--quiet --no-csv --threads 2 --out ";
+  const auto with = billiard(run + (dir / "with").string());
+  const auto without = billiard(run + (dir / "without").string() + " --no-plot");
+  INFO(with.output << without.output);
+  REQUIRE(with.status == 0);
+  REQUIRE(without.status == 0);
+  CHECK_FALSE(fs::exists(dir / "without" / "comparison.png"));
+  for (const char* f : {"comparison.csv", "fokker-planck.csv", "energies.npy"})
+    CHECK(read_file(dir / "without" / f) == read_file(dir / "with" / f));
+  CHECK(read_json(dir / "without" / "comparison.json")["times"] == read_json(dir / "with" / "comparison.json")["times"]);
+  const auto plot = run_command("/usr/bin/python3 " BILLIARDS_SOURCE_DIR "/scripts/plot_compare.py " +
+                                (dir / "without").string());
+  INFO(plot.output);
+  CHECK(plot.status == 0);
+  CHECK(read_file(dir / "without" / "comparison.png").substr(1, 3) == "PNG");
+}
+
 TEST_CASE("compare refuses a scene without a prediction and writes nothing") {
   const auto dir = scratch("compare-free") / "out";
   const auto r = billiard("compare scenes/clover-free.yaml --particles 100 --quiet --out " + dir.string());

@@ -9,15 +9,19 @@
 
 namespace billiards::analysis {
 
-SampleMoments sample_moments(std::span<const double> x) {
-  if (x.size() < 2) throw std::invalid_argument("sample_moments needs at least two values");
-  const double n = double(x.size());
+namespace {
+
+/// The moments of the n values value(0), ..., value(n − 1).
+template <class Value>
+SampleMoments moments_of(std::size_t count, Value value) {
+  if (count < 2) throw std::invalid_argument("sample_moments needs at least two values");
+  const double n = double(count);
   double sum = 0;
-  for (double v : x) sum += v;
+  for (std::size_t i = 0; i < count; ++i) sum += value(i);
   const double mean = sum / n;
   double m2 = 0, m4 = 0;
-  for (double v : x) {
-    const double d2 = (v - mean) * (v - mean);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double v = value(i), d2 = (v - mean) * (v - mean);
     m2 += d2;
     m4 += d2 * d2;
   }
@@ -26,7 +30,18 @@ SampleMoments sample_moments(std::span<const double> x) {
   // Var(s²) = (μ4 − (n−3)/(n−1) σ⁴)/n for any distribution with a fourth moment; clamp the
   // estimate, which can dip below zero for tiny samples.
   const double var_of_var = (m4 - (n - 3) / (n - 1) * variance * variance) / n;
-  return {x.size(), mean, variance, std::sqrt(variance / n), std::sqrt(std::max(0.0, var_of_var))};
+  return {count, mean, variance, std::sqrt(variance / n), std::sqrt(std::max(0.0, var_of_var))};
+}
+
+}  // namespace
+
+SampleMoments sample_moments(std::span<const double> x) {
+  return moments_of(x.size(), [x](std::size_t i) { return x[i]; });
+}
+
+SampleMoments sample_moments_of_differences(std::span<const double> x, std::span<const double> y) {
+  if (x.size() != y.size()) throw std::invalid_argument("sample_moments_of_differences: samples of unequal sizes");
+  return moments_of(x.size(), [x, y](std::size_t i) { return x[i] - y[i]; });
 }
 
 Histogram histogram(std::span<const double> x, double lo, double hi, std::size_t bins) {

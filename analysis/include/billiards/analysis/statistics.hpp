@@ -20,6 +20,8 @@ struct SampleMoments {
 
 /// Two passes (mean, then central sums), so large offsets cost no precision.  Needs n ≥ 2.
 SampleMoments sample_moments(std::span<const double> x);
+/// The same of x − y, element by element, without storing the differences (ΔE = E(t) − E(0)).
+SampleMoments sample_moments_of_differences(std::span<const double> x, std::span<const double> y);
 
 /// Counts in `bins` equal bins on [lo, hi); samples outside are counted only in `total`, so
 /// densities stay normalized against the whole sample.
