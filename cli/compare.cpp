@@ -16,11 +16,9 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <optional>
-#include <utility>
 
 namespace billiards::cli {
 
@@ -79,18 +77,6 @@ std::string numerical_table(const analysis::FokkerPlanckSolution& s) {
   }
   return csv;
 }
-
-/// Wall-clock seconds since the last call (or the construction).
-class Lap {
- public:
-  double operator()() {
-    const auto now = std::chrono::steady_clock::now();
-    return std::chrono::duration<double>(now - std::exchange(last_, now)).count();
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
 
 /// The simulation against the theory at one recorded time t.
 struct Fit {

@@ -17,7 +17,6 @@
 #include <omp.h>
 
 #include <charconv>
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -142,7 +141,7 @@ EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& 
   const Ranks& procs = ranks();
   Progress progress("run", n, !args.quiet && procs.root());
   const std::size_t chunk = std::max<std::size_t>(1024, n / 64);
-  const auto start = std::chrono::steady_clock::now();
+  Lap lap;
   std::size_t new_chunks = 0;
   bool interrupted = false;
   for (std::size_t first = 0; first < n && !interrupted; first += chunk) {
@@ -169,7 +168,7 @@ EnsembleResult execute(const Scene& scene, const Flight& flight, const RunArgs& 
   procs.combine(result.energies.data(), result.energies.size() * sizeof(double));
   procs.combine(result.logs.data(), result.logs.size() * sizeof(dynamics::ParticleLog));
   progress.finish();
-  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  seconds = lap();
   if (procs.root()) checkpoint.remove();
   return result;
 }
@@ -352,10 +351,10 @@ std::optional<RunOutcome> run_ensemble(const Scene& scene, const RunArgs& args_i
                scene.output_dir);
     return std::nullopt;
   }
-  const auto start = std::chrono::steady_clock::now();
+  Lap lap;
   run.by_time = energies_by_time(run.result, scene.record_times.size(), args.threads);
   run.changes = change_moments(run.by_time, scene.record_times.size(), args.threads);
-  run.statistics_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  run.statistics_seconds = lap();
   run.summary = summarize(scene, run.prediction, run.result, run.changes, seconds, args);
   return run;
 }

@@ -13,10 +13,12 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace billiards::cli {
@@ -42,6 +44,18 @@ void add_run_options(CLI::App* cmd, RunArgs& args);
 
 /// The scene with the command line's overrides applied.
 dynamics::Scene load_scene(const RunArgs& args);
+
+/// Wall-clock seconds since the last call (or the construction).
+class Lap {
+ public:
+  double operator()() {
+    const auto now = std::chrono::steady_clock::now();
+    return std::chrono::duration<double>(now - std::exchange(last_, now)).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
 
 /// E(t_k) of the particles that did not escape, a column per record time k, in one block left
 /// uninitialized until the threads that fill it touch its pages.
