@@ -58,6 +58,46 @@ void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, d
   });
 }
 
+/// The triangles a helix (Gyration) may cross, an arc at a time in time order: an arc of
+/// angle Δ from τa to τb stays within r_c Δ²/8 of its chord traversed linearly in time (the
+/// error of linear interpolation, |f''| = r_c Δ², across the field; the drift along it is
+/// linear), so the chord's boxes grown by that (and rounding) hold every triangle the arc
+/// meets, and the chord's parameter is the time: a hit found ends the walk of the arcs after
+/// it.  An arc is an eighth of a turn, or an eighth of the table's diagonal long where that is
+/// shorter (a wide helix): the walk visits the triangles near the path, not all those within
+/// r_c of the guiding axis, and asks each leaf once.  After 64 arcs without a hit (a slow drift
+/// along the field) the rest goes by the axis' tube.
+template <class Helix, class Exit>
+void Table3::search_triangles_along_helix(const Helix& helix, double t0, Hit3& best, Exit exit) const {
+  constexpr int max_arcs = 64;
+  const Tube3 tube = helix.tube();
+  const auto [a0, v0] = helix.at(0);
+  const double h = std::min(helix.period() / 8, (hi_ - lo_).norm() / (8 * v0.norm())), angle = helix.k * h;
+  const double bow = helix.radius * angle * angle / 8 * (1 + 1e-9), rounding = 2 * (tube.pad - helix.radius);
+  // The leaves already asked (by their first triangle): asked again, a triangle cannot cross
+  // before its first crossing found then, the bound best.t having only fallen since.
+  constexpr int max_seen = 64;
+  int seen[max_seen], seen_count = 0;
+  Vec3 a = a0;
+  for (int j = 0; j < max_arcs; ++j) {
+    const double ta = t0 + j * h;  // the arc [ta, ta + h], as the absolute time
+    if (!(ta < best.t)) return;
+    const Vec3 b = helix.at((j + 1) * h).first;
+    const double pad = bow + rounding + 16 * scan::eps<double> * (a.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff());
+    bvh_.walk(a, (b - a) / h, pad, std::min(h, best.t - ta), [&](int first, int count) {
+      if (std::find(seen, seen + seen_count, first) != seen + seen_count) return std::min(h, best.t - ta);
+      if (seen_count < max_seen) seen[seen_count++] = first;
+      for (int i = first; i < first + count; ++i) {
+        const double t = exit(triangles()[i], best.t);
+        if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
+      }
+      return std::min(h, best.t - ta);
+    });
+    a = b;
+  }
+  if (t0 + max_arcs * h < best.t) search_triangles(tube.origin, tube.dir, tube.pad, t0, best, exit);
+}
+
 namespace {
 
 /// Is a 3-D wall of kind W searched in the time order of its windows along the driven flight
@@ -97,14 +137,11 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
   best.t = t_end;
   if constexpr (is_straight<Flight> || requires { flight.scan_from(s).tube(); }) {
     const auto scan = flight.scan_from(s);
-    const Tube3 tube = [&] {
-      if constexpr (is_straight<Flight>) return Tube3{s.x, s.v, 0};
-      else return scan.tube();
-    }();
     for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
       if constexpr (std::is_same_v<W, TriangleWall>) {
-        search_triangles(tube.origin, tube.dir, tube.pad, s.t, best,
-                         [&](const TriangleWall& w, double t) { return scan.exit_time(w, t); });
+        const auto exit = [&](const TriangleWall& w, double t) { return scan.exit_time(w, t); };
+        if constexpr (is_straight<Flight>) search_triangles(s.x, s.v, 0, s.t, best, exit);
+        else search_triangles_along_helix(scan, s.t, best, exit);
       } else {
         for (int i = 0, n = int(walls.size()); i < n; ++i) {
           const double t = scan.exit_time(walls[i], best.t);

@@ -52,9 +52,9 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   /// MagneticDriveFlight3) from `s` leaves the region through, before `t_end`, with the
   /// flight's state there.  The walls other than triangles are asked one by one (a driven
   /// flight's in the time order of their windows); the triangles through the BVH, walked along
-  /// the flight's guiding line with boxes grown by its oscillation's amplitude |F|/(mω²) or its
-  /// cyclotron radius (`Tube3`), except under a magnetic field with a force, whose path no tube
-  /// holds: every triangle is asked.  For a particle inside the region and
+  /// the flight's guiding line with boxes grown by its oscillation's amplitude |F|/(mω²), or
+  /// along a helix's chords an eighth of a turn at a time, except under a magnetic field with a
+  /// force, whose path no tube holds: every triangle is asked.  For a particle inside the region and
   /// t_end = never, found() == false means an escape.
   template <class Flight>
   FlightHit<Flight> collision(const Flight& flight, const typename Flight::State& s, double t_end = never) const;
@@ -88,6 +88,8 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
  private:
   template <class Exit>
   void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const;
+  template <class Helix, class Exit>
+  void search_triangles_along_helix(const Helix& helix, double t0, Hit3& best, Exit exit) const;
 
   const geometry3::Region3& region_;
   Bvh bvh_;
