@@ -43,17 +43,27 @@ Table3::BasicTable(const Region3& region) : region_(region) {
   triangles = std::move(sorted);
 }
 
+namespace {
+
+/// The earliest exit time `exit(triangle)` of a leaf's triangles [first, first + count), kept in
+/// `best` where it is earlier.
+template <class Exit>
+void ask_leaf(const std::vector<TriangleWall>& triangles, int first, int count, Hit3& best, Exit exit) {
+  for (int i = first; i < first + count; ++i) {
+    const double t = exit(triangles[i], best.t);
+    if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
+  }
+}
+
+}  // namespace
+
 /// Walks the BVH along the ray `origin + τ dir` (τ after `t0`), boxes grown by `pad`, and
 /// keeps in `best` the earliest exit time `exit(triangle)` found.
 template <class Exit>
 void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best,
                               Exit exit) const {
-  const auto& triangles = this->triangles();
   bvh_.walk(origin, dir, pad, best.t - t0, [&](int first, int count) {
-    for (int i = first; i < first + count; ++i) {
-      const double t = exit(triangles[i], best.t);
-      if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
-    }
+    ask_leaf(triangles(), first, count, best, exit);
     return best.t - t0;
   });
 }
@@ -87,10 +97,7 @@ void Table3::search_triangles_along_helix(const Helix& helix, double t0, Hit3& b
     bvh_.walk(a, (b - a) / h, pad, std::min(h, best.t - ta), [&](int first, int count) {
       if (std::find(seen, seen + seen_count, first) != seen + seen_count) return std::min(h, best.t - ta);
       if (seen_count < max_seen) seen[seen_count++] = first;
-      for (int i = first; i < first + count; ++i) {
-        const double t = exit(triangles()[i], best.t);
-        if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
-      }
+      ask_leaf(triangles(), first, count, best, exit);
       return std::min(h, best.t - ta);
     });
     a = b;
