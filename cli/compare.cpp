@@ -102,8 +102,8 @@ Fit fit_at(const RunOutcome& run, std::size_t k, const Law& law, std::size_t bin
   const auto E = run.by_time[k];
   f.ks = analysis::ks_distance(E, law.cdf);
   f.ks_p = analysis::ks_p_value(f.ks, E.size());
-  const auto [lo, hi] = std::minmax_element(E.begin(), E.end());
-  f.histogram = analysis::histogram(E, *lo, std::nextafter(*hi, INFINITY), bins);
+  const auto [lo, hi] = analysis::sample_range(E);
+  f.histogram = analysis::histogram(E, lo, std::nextafter(hi, INFINITY), bins);
   f.l1 = analysis::histogram_l1_cdf(f.histogram, law.cdf);
   return f;
 }

@@ -170,6 +170,27 @@ TEST_CASE("Kolmogorov-Smirnov distance: the sweep over every sorted value to the
   CHECK_THROWS(analysis::ks_distance(std::vector<double>{1, NAN, 2}, exponential));
 }
 
+TEST_CASE("sample range: std::minmax_element's extremes at every length and position; NaN refused") {
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> gauss;
+  for (std::size_t n : {1, 2, 3, 4, 5, 7, 8, 9, 1001}) {
+    std::vector<double> x(n);
+    for (double& v : x) v = gauss(rng);
+    // The extremes placed at each residue mod 4 in turn (each running extreme and the tail).
+    for (std::size_t at = 0; at < std::min<std::size_t>(n, 6); ++at) {
+      std::swap(x[at], *std::min_element(x.begin(), x.end()));
+      std::swap(x[n - 1 - at], *std::max_element(x.begin(), x.end()));
+      const auto [lo, hi] = std::minmax_element(x.begin(), x.end());
+      INFO("n = " << n << ", at = " << at);
+      CHECK(analysis::sample_range(x) == std::pair{*lo, *hi});
+    }
+    x[n / 2] = NAN;
+    CHECK_THROWS(analysis::sample_range(x));
+  }
+  const auto [lo, hi] = analysis::sample_range({});
+  CHECK((lo == INFINITY && hi == -INFINITY));
+}
+
 TEST_CASE("binomial mean absolute deviation: De Moivre's closed form against the direct sum") {
   for (auto [n, p] : {std::pair{4, 0.5}, {10, 0.3}, {50, 0.02}, {100, 0.999}, {7, 1.0 / 7}, {1, 0.5}}) {
     double direct = 0;

@@ -3,7 +3,9 @@
 #include "billiards/analysis/quadrature.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -44,14 +46,32 @@ SampleMoments sample_moments_of_differences(std::span<const double> x, std::span
   return moments_of(x.size(), [x, y](std::size_t i) { return x[i] - y[i]; });
 }
 
+std::pair<double, double> sample_range(std::span<const double> x) {
+  // Four running extremes: one chain of dependent min and max per value would be
+  // latency-bound.
+  std::array<double, 4> lo, hi;
+  lo.fill(INFINITY), hi.fill(-INFINITY);
+  bool nan = false;
+  const auto take = [&](std::size_t k, double v) {
+    nan |= std::isnan(v);
+    lo[k] = std::min(lo[k], v), hi[k] = std::max(hi[k], v);
+  };
+  std::size_t i = 0;
+  for (; i + 4 <= x.size(); i += 4)
+    for (std::size_t k = 0; k < 4; ++k) take(k, x[i + k]);
+  for (; i < x.size(); ++i) take(0, x[i]);
+  if (nan) throw std::invalid_argument("a sample with NaN");
+  return {std::ranges::min(lo), std::ranges::max(hi)};
+}
+
 Histogram histogram(std::span<const double> x, double lo, double hi, std::size_t bins) {
   if (!(hi > lo) || bins == 0) throw std::invalid_argument("histogram needs hi > lo and at least one bin");
   Histogram h{lo, hi, std::vector<std::size_t>(bins, 0), x.size()};
+  const double width = h.width();
   for (double v : x) {
     if (!(v >= lo && v < hi)) continue;
     // (v − lo)/width can round up to `bins` for v just below hi.
-    const auto i = std::min(bins - 1, std::size_t((v - lo) / h.width()));
-    ++h.counts[i];
+    ++h.counts[std::min(bins - 1, std::size_t((v - lo) / width))];
   }
   return h;
 }
@@ -63,28 +83,38 @@ namespace {
 /// largest of F(x) − i/n and (i+1)/n − F(x).  For a non-decreasing F, values with ranks
 /// [a, b) that lie in [lo, hi] have F(x) ∈ [F(lo), F(hi)]: none of their terms exceeds
 /// max(F(hi) − a/n, b/n − F(lo)), and when that bound is below the distance found so far they
-/// need no evaluation.  The values are grouped into buckets of equal width (one pass, no
-/// sort), ranges of buckets are refined level by level while their bound stays above the
-/// distance, and only buckets that still may hold the largest term are sorted and bisected the
-/// same way.  The terms evaluated are the same expressions as in a sweep over the sorted
-/// sample, and the skipped ones are smaller, so the distance is the sweep's to the bit — as long
-/// as F, as computed, never decreases by more than `margin` (rounding of a CDF is ~1e-15).
-/// About 10⁴ evaluations of F for 10⁶ values instead of 10⁶.
+/// need no evaluation.  The values are tallied into buckets of equal width (one pass, no sort),
+/// ranges of buckets are refined level by level while their bound stays above the distance,
+/// and the buckets that still may hold the largest term (about a hundred of 6·10⁴ at n = 10⁶)
+/// are the only ones whose values are gathered (a second pass), sorted and bisected the same
+/// way.  The terms evaluated are the same expressions as in a sweep over the sorted sample,
+/// and the skipped ones are smaller, so the distance is the sweep's to the bit — as long as F,
+/// as computed, never decreases by more than `margin` (rounding of a CDF is ~1e-15).  About
+/// 10⁴ evaluations of F for 10⁶ values instead of 10⁶.
 class KsSearch {
  public:
-  KsSearch(std::span<const double> x, const std::function<double(double)>& cdf) : cdf_(&cdf), n_(double(x.size())) {
-    group(x);
-  }
+  KsSearch(std::span<const double> x, const std::function<double(double)>& cdf)
+      : x_(x), cdf_(&cdf), n_(double(x.size())) {}
   double distance() {
+    if (x_.empty()) return 0;
+    tally();
     refine_buckets();
+    gather_leaves();
+    bisect_leaves();
     return d_;
   }
 
  private:
   static constexpr double margin = 1e-10;
   struct Bucket {
-    std::size_t first = 0, count = 0;  // its values: grouped_[first, first + count), their ranks
+    std::size_t first = 0, count = 0;      // the ranks of its values: [first, first + count)
     double lo = INFINITY, hi = -INFINITY;  // its smallest and largest value
+  };
+  /// A bucket that may hold the largest term: its values, once gathered, are
+  /// leaf_values_[offset, offset + count); F at its smallest and largest value.
+  struct Leaf {
+    std::size_t bucket, offset;
+    double F_lo, F_hi;
   };
   /// Could a value of rank in [a, b), with F between F_lo and F_hi, raise the distance?
   bool may_raise(double F_lo, double F_hi, std::size_t a, std::size_t b) const {
@@ -97,56 +127,52 @@ class KsSearch {
     return F;
   }
 
-  /// Buckets of equal width between the smallest and the largest value (their index is
-  /// monotonic in x: rounding never puts a larger value into an earlier bucket), about 16
-  /// values each, and the values grouped by bucket.
-  void group(std::span<const double> x) {
-    if (x.empty()) return;
-    double lo = INFINITY, hi = -INFINITY;
-    for (double v : x) {
-      if (std::isnan(v)) throw std::invalid_argument("ks_distance of a sample with NaN");
-      lo = std::min(lo, v), hi = std::max(hi, v);
-    }
-    const std::size_t count = std::clamp<std::size_t>(x.size() / 16, 1, std::size_t(1) << 16);
-    const double scale = hi > lo && std::isfinite(double(count) / (hi - lo)) ? double(count) / (hi - lo) : 0;
-    const auto index = [&](double v) { return scale > 0 ? std::min(count - 1, std::size_t((v - lo) * scale)) : 0; };
-    std::vector<Bucket> all(count);
-    for (double v : x) {
-      Bucket& b = all[index(v)];
+  /// The bucket of a value (monotonic in x: rounding never puts a larger value into an earlier
+  /// bucket).
+  std::size_t bucket_of(double v) const {
+    return scale_ > 0 ? std::min(buckets_.size() - 1, std::size_t((v - lo_) * scale_)) : 0;
+  }
+  /// Buckets of equal width between the smallest and the largest value, about 16 values each:
+  /// how many values fall into each, and their extremes.
+  void tally() {
+    const auto [lo, hi] = sample_range(x_);
+    const std::size_t count = std::clamp<std::size_t>(x_.size() / 16, 1, std::size_t(1) << 16);
+    lo_ = lo;
+    scale_ = hi > lo && std::isfinite(double(count) / (hi - lo)) ? double(count) / (hi - lo) : 0;
+    buckets_.resize(count);
+    for (double v : x_) {
+      Bucket& b = buckets_[bucket_of(v)];
       ++b.count, b.lo = std::min(b.lo, v), b.hi = std::max(b.hi, v);
     }
     std::size_t first = 0;
-    for (auto& b : all) b.first = first, first += b.count;
-    grouped_.resize(x.size());
-    std::vector<std::size_t> next(count);
-    for (std::size_t j = 0; j < count; ++j) next[j] = all[j].first;
-    for (double v : x) grouped_[next[index(v)]++] = v;
-    for (const auto& b : all)
-      if (b.count > 0) buckets_.push_back(b);
+    for (std::size_t j = 0; j < count; ++j) {
+      buckets_[j].first = first, first += buckets_[j].count;
+      if (buckets_[j].count > 0) filled_.push_back(j);
+    }
   }
+  const Bucket& filled(std::size_t j) const { return buckets_[filled_[j]]; }
 
-  /// Ranges [j0, j1) of buckets, level by level (the coarse levels bring the distance near its
-  /// value early, so that finer ranges are skipped); F at each range's two extreme values.
+  /// Ranges [j0, j1) of filled buckets, level by level (the coarse levels bring the distance
+  /// near its value early, so that finer ranges are skipped); F at each range's two extreme
+  /// values.  A single bucket that may still raise the distance becomes a leaf.
   void refine_buckets() {
     struct Range {
       std::size_t j0, j1;
       double F_lo, F_hi;
     };
-    if (buckets_.empty()) return;
-    const std::size_t last = buckets_.size() - 1;
-    std::vector<Range> level{{0, buckets_.size(), term_at(buckets_[0].lo, 0),
-                              term_at(buckets_[last].hi, grouped_.size() - 1)}};
+    const std::size_t last = filled_.size() - 1;
+    std::vector<Range> level{{0, filled_.size(), term_at(filled(0).lo, 0), term_at(filled(last).hi, x_.size() - 1)}};
     while (!level.empty()) {
       std::vector<Range> finer;
       for (const auto& r : level) {
-        const Bucket &a = buckets_[r.j0], &b = buckets_[r.j1 - 1];
+        const Bucket &a = filled(r.j0), &b = filled(r.j1 - 1);
         if (!may_raise(r.F_lo, r.F_hi, a.first, b.first + b.count)) continue;
         if (r.j1 - r.j0 == 1) {
-          bisect_bucket(a, r.F_lo, r.F_hi);
+          leaves_.push_back({filled_[r.j0], 0, r.F_lo, r.F_hi});
           continue;
         }
         const std::size_t mid = (r.j0 + r.j1) / 2;
-        const Bucket &left = buckets_[mid - 1], &right = buckets_[mid];
+        const Bucket &left = filled(mid - 1), &right = filled(mid);
         finer.push_back({r.j0, mid, r.F_lo, term_at(left.hi, left.first + left.count - 1)});
         finer.push_back({mid, r.j1, term_at(right.lo, right.first), r.F_hi});
       }
@@ -154,28 +180,51 @@ class KsSearch {
     }
   }
 
-  /// One bucket, sorted: its values between the first and the last (whose F are given) by
-  /// bisection.
-  void bisect_bucket(const Bucket& b, double F_first, double F_last) {
-    double* v = grouped_.data() + b.first;
-    std::sort(v, v + b.count);
-    bisect(b.first, b.first + b.count - 1, F_first, F_last);
+  /// The leaves' values, each leaf's together, from one pass over the sample.
+  void gather_leaves() {
+    constexpr auto none = std::numeric_limits<std::size_t>::max();
+    std::vector<std::size_t> leaf_of(buckets_.size(), none), next(leaves_.size());
+    std::size_t size = 0;
+    for (std::size_t l = 0; l < leaves_.size(); ++l) {
+      leaf_of[leaves_[l].bucket] = l;
+      next[l] = leaves_[l].offset = size;
+      size += buckets_[leaves_[l].bucket].count;
+    }
+    leaf_values_.resize(size);
+    for (double v : x_)
+      if (const std::size_t l = leaf_of[bucket_of(v)]; l != none) leaf_values_[next[l]++] = v;
   }
-  /// The values of ranks strictly between i and j (sorted), F(x_i) and F(x_j) given.
-  void bisect(std::size_t i, std::size_t j, double F_i, double F_j) {
-    if (j - i < 2 || grouped_[i] == grouped_[j]) return;  // (equal values: the ends' terms are the largest)
+  /// Each leaf that still may raise the distance, sorted: its values between the first and the
+  /// last (whose F are known) by bisection.
+  void bisect_leaves() {
+    for (const auto& leaf : leaves_) {
+      const Bucket& b = buckets_[leaf.bucket];
+      if (!may_raise(leaf.F_lo, leaf.F_hi, b.first, b.first + b.count)) continue;
+      double* v = leaf_values_.data() + leaf.offset;
+      std::sort(v, v + b.count);
+      bisect(v - b.first, b.first, b.first + b.count - 1, leaf.F_lo, leaf.F_hi);
+    }
+  }
+  /// The values of ranks strictly between i and j, sorted values by rank sorted[·], F(x_i) and
+  /// F(x_j) given.
+  void bisect(const double* sorted, std::size_t i, std::size_t j, double F_i, double F_j) {
+    if (j - i < 2 || sorted[i] == sorted[j]) return;  // (equal values: the ends' terms are the largest)
     if (!may_raise(F_i, F_j, i + 1, j)) return;
     const std::size_t mid = i + (j - i) / 2;
-    const double F_mid = term_at(grouped_[mid], mid);
-    bisect(i, mid, F_i, F_mid);
-    bisect(mid, j, F_mid, F_j);
+    const double F_mid = term_at(sorted[mid], mid);
+    bisect(sorted, i, mid, F_i, F_mid);
+    bisect(sorted, mid, j, F_mid, F_j);
   }
 
+  std::span<const double> x_;
   const std::function<double(double)>* cdf_;
   double n_;
   double d_ = 0;
-  std::vector<double> grouped_;
-  std::vector<Bucket> buckets_;  // the non-empty ones, in order of value
+  double lo_ = 0, scale_ = 0;  // the buckets' origin and their number per unit of x
+  std::vector<Bucket> buckets_;
+  std::vector<std::size_t> filled_;  // the non-empty buckets, in order of value
+  std::vector<Leaf> leaves_;
+  std::vector<double> leaf_values_;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <functional>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace billiards::analysis {
@@ -22,6 +23,10 @@ struct SampleMoments {
 SampleMoments sample_moments(std::span<const double> x);
 /// The same of x − y, element by element, without storing the differences (ΔE = E(t) − E(0)).
 SampleMoments sample_moments_of_differences(std::span<const double> x, std::span<const double> y);
+
+/// The smallest and the largest value of a sample (±∞ for an empty one); throws if a value is
+/// NaN.
+std::pair<double, double> sample_range(std::span<const double> x);
 
 /// Counts in `bins` equal bins on [lo, hi); samples outside are counted only in `total`, so
 /// densities stay normalized against the whole sample.
