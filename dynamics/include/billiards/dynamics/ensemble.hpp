@@ -145,18 +145,16 @@ class Trajectory {
   const typename Flight::State& state() const { return s_; }
   const Clock& clock() const { return clock_; }
   /// `step` with the next collision, collision(table, flight, state(), horizon()), found by the
-  /// caller (run_particles, several particles in lock step).
+  /// caller (run_particles, several particles in lock step).  Inlined into the caller's loop:
+  /// out of line, the driven clover in lock step runs 2–3% slower.
   template <class HitT>
-  bool advance_to(const HitT& hit) {
-    const auto& times = opt_->record_times;
-    const std::size_t n = times.size();
+  [[gnu::always_inline]] bool advance_to(const HitT& hit) {
     // A search that stopped at its look-ahead, short of the last record time, with no wall met.
     const double end = horizon();
     const bool looked_ahead = !hit.found() && end < clock_.until(t_final_);
     const double t_next = hit.found() ? hit.t : looked_ahead ? end : never;
-    for (double t; k_ < n && (t = clock_.until(times[k_])) <= t_next; ++k_)
-      if (!record(t)) return escape();
-    if (k_ == n) return false;
+    if (!record_until(t_next)) return escape();
+    if (done()) return false;
     if (looked_ahead) {  // on to the look-ahead, to search again from there
       s_ = flight_->advance(s_, end);
       restart_clock(*flight_, s_, clock_);
@@ -176,14 +174,51 @@ class Trajectory {
 
  private:
   bool next_collision() { return !done() && advance_to(collision(*table_, *flight_, s_, horizon())); }
+  /// Records the energies at the record times up to t_end (on the flight's clock); false when
+  /// the particle is not inside the table at one.  A run that checks every flight's midpoint
+  /// does not check its records too: a particle outside is caught at its flight's midpoint.
+  bool record_until(double t_end) {
+    if constexpr (marks_records<Flight>) {
+      if (opt_->verify_every_flight) {
+        record_marks_until(t_end);
+        return true;
+      }
+    }
+    const auto& times = opt_->record_times;
+    for (double t; k_ < times.size() && (t = clock_.until(times[k_])) <= t_end; ++k_)
+      if (!record(t)) return false;
+    return true;
+  }
+  /// The same for a flight with marks, unchecked, four record times at a time while four are
+  /// left.  A block's energies are stored before it is known which of its times the flight
+  /// reaches (a later flight overwrites the others): the loop then ends on a branch per four
+  /// records instead of one on each record's time, whose outcome (how many record times a
+  /// flight spans) no predictor can guess.  The records taken are the same, in the same order.
+  void record_marks_until(double t_end) {
+    constexpr std::size_t block = 4;
+    const auto& times = opt_->record_times;
+    while (times.size() - k_ >= block) {
+      std::size_t reached = 0;  // the block's records up to t_end, the first in order
+      for (std::size_t b = 0; b < block; ++b) {
+        energies_[k_ + b] = energy_at_mark(k_ + b);
+        reached += (reached == b) & (clock_.until(times[k_ + b]) <= t_end);
+      }
+      k_ += reached;
+      if (reached < block) return;
+    }
+    for (; k_ < times.size() && clock_.until(times[k_]) <= t_end; ++k_) energies_[k_] = energy_at_mark(k_);
+  }
+  /// The energy at record time k of a flight with marks, from the current flight.
+  double energy_at_mark(std::size_t k) const {
+    return flight_->kinetic_energy_at_mark(s_, marks_->at[k], opt_->mass);
+  }
   /// Records the energy at the next record time, t on the flight's clock; false when the
-  /// particle is not inside the table there.  A run that checks every flight's midpoint does
-  /// not check its records too: a particle outside is caught at its flight's midpoint.
+  /// particle is not inside the table there (checked unless every flight's midpoint is).
   bool record(double t) {
     const bool check = !opt_->verify_every_flight;
     if constexpr (marks_records<Flight>) {
       if (check && !inside_at(t)) return false;
-      energies_[k_] = flight_->kinetic_energy_at_mark(s_, marks_->at[k_], opt_->mass);
+      energies_[k_] = energy_at_mark(k_);
     } else {
       const auto r = flight_->advance(s_, t);
       if (check && !table_->contains(r.x)) return false;
