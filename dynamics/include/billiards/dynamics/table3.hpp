@@ -28,8 +28,8 @@ inline constexpr int plane = 0, triangle = 1, sphere = 2;
 }
 
 /// A line x = origin + τ dir that a flight's path stays within `pad` of (τ from the flight's
-/// start): the straight flight's own ray (pad 0), a helix's guiding axis (pad r_c).  The BVH
-/// walks it.
+/// start): a helix's guiding axis (pad r_c).  The BVH walks it when a helix has not met a wall
+/// within the 64 arcs whose chords it walks first (table3.cpp).
 struct Tube3 {
   Vec3 origin, dir;
   double pad;
