@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 using namespace billiards;
 
@@ -168,6 +169,27 @@ TEST_CASE("Kolmogorov-Smirnov distance: the sweep over every sorted value to the
   analysis::ks_distance(big, exponential);
   CHECK(calls < big.size() / 20);
   CHECK_THROWS(analysis::ks_distance(std::vector<double>{1, NAN, 2}, exponential));
+}
+
+TEST_CASE("histogram: each value in the bin of the quotient (v - lo)/width, also next to every edge") {
+  // Widths that 1/width does not represent exactly, values drawn at random and the doubles on
+  // either side of each bin's edge, against the bin counted by the quotient itself.
+  std::mt19937_64 rng(5);
+  for (auto [lo, hi, bins] : {std::tuple{0.0, 1.0, 3}, {-7.3, 11.9, 97}, {1e6 + 0.1, 1e6 + 0.7, 41}, {0.5, 4.5, 1000}}) {
+    std::uniform_real_distribution<double> uniform(lo, hi);
+    std::vector<double> x(20000);
+    for (double& v : x) v = uniform(rng);
+    const double width = (hi - lo) / bins;
+    for (int b = 0; b <= bins; ++b) {
+      const double edge = lo + b * width;
+      for (double v : {std::nextafter(edge, -INFINITY), edge, std::nextafter(edge, INFINITY)}) x.push_back(v);
+    }
+    std::vector<std::size_t> expected(std::size_t(bins), 0);
+    for (double v : x)
+      if (v >= lo && v < hi) ++expected[std::min(std::size_t(bins) - 1, std::size_t((v - lo) / width))];
+    INFO("[" << lo << ", " << hi << ") in " << bins);
+    CHECK(analysis::histogram(x, lo, hi, std::size_t(bins)).counts == expected);
+  }
 }
 
 TEST_CASE("sample range: std::minmax_element's extremes at every length and position; NaN refused") {

@@ -67,11 +67,17 @@ std::pair<double, double> sample_range(std::span<const double> x) {
 Histogram histogram(std::span<const double> x, double lo, double hi, std::size_t bins) {
   if (!(hi > lo) || bins == 0) throw std::invalid_argument("histogram needs hi > lo and at least one bin");
   Histogram h{lo, hi, std::vector<std::size_t>(bins, 0), x.size()};
-  const double width = h.width();
+  const double width = h.width(), per_width = 1 / width;
   for (double v : x) {
     if (!(v >= lo && v < hi)) continue;
-    // (v − lo)/width can round up to `bins` for v just below hi.
-    ++h.counts[std::min(bins - 1, std::size_t((v - lo) / width))];
+    // The bin is ⌊(v − lo)/width⌋.  A product by 1/width is within a few ulps of that quotient:
+    // its floor is the quotient's unless it lies that near an integer, where the quotient
+    // decides (a bin's edge, rarely met but for v = lo).
+    const double u = (v - lo) * per_width;
+    auto i = std::size_t(u);
+    if (const double f = u - double(i), slack = 0x1p-40 * u; !(f > slack && f < 1 - slack))
+      i = std::size_t((v - lo) / width);
+    ++h.counts[std::min(bins - 1, i)];  // ((v − lo)/width can round up to `bins` for v just below hi)
   }
   return h;
 }
