@@ -10,9 +10,10 @@
 // samples, the span test of a window, monotone_crossing's Halley step and certain landing) and
 // straight_exit-inl.hpp (the span test of a point).  This file holds what differs: the rounds
 // in which each lane chooses its next window or steps its root search (first_hit_in_windows
-// and monotone_crossing's loops, branches become selections), the flight's numbers along its
-// guide and its motion (Quiver, computed as its constructor and `motion` do), and the state at
-// the hit (PeriodicDriveFlight::advance and BasicArcWall::contact).  A lane leaves the search
+// and monotone_crossing's loops, branches become selections), the flight's guiding line and
+// its motion (Quiver, computed as its constructor and `motion` do; the guide's numbers are
+// driven_exit-inl.hpp's guide_lanes and creeps), and the state at the hit
+// (PeriodicDriveFlight::advance and BasicArcWall::contact).  A lane leaves the search
 // (`handed_back`) wherever the scalar search would take a path not run here.  The lanes use
 // only Highway's operations that round as IEEE (no fused multiply-add: -ffp-contract=off keeps
 // the compiler from fusing them either), builtins and the functions of the files above and this
@@ -254,6 +255,7 @@ struct PackLanes {
   LANES static Pack fraction(int a, int b) { return splat(double(a) / b); }
   LANES static Pack never() { return splat(inf); }
   LANES static Pack eps() { return splat(0x1p-52); }
+  LANES static Pack two_pi() { return splat(6.28318530717958647692); }
   LANES static Pack select(Mask m, Pack a, Pack b) { return sel(m, a, b); }
   LANES static Mask select_truth(Mask m, Mask a, Mask b) { return sel(m, a, b); }
   LANES static Mask splat_truth(bool a) { return a ? ~Mask{} : Mask{}; }
@@ -396,8 +398,10 @@ LANES void with_kinds(const Wall& w, Mask count, F f) {
 struct Quiver {
   Pack sx, sy, v0x, v0y, phase, sin_phase, cos_phase;
   Pack omega, accel_x, accel_y, amp_x_x, amp_x_y, amp_v_x, amp_v_y, accel_norm, inv_omega, delta;
-  Pack ux, uy, g0x, g0y, uu, inv_uu, speed, wobble, speed_bound, rounding_rate;
+  Pack ux, uy, g0x, g0y;
+  GuideLanes<Pack> numbers;
   Mask creeping;  // (handed back: the scalar search, wall by wall)
+  Pack rounding_rate;
   explicit Quiver(const Drive& d, const Flights& f)
       : sx(load(f.sx)), sy(load(f.sy)), v0x(load(f.vx)), v0y(load(f.vy)), phase(load(f.phase_hi) + load(f.phase_lo)),
         sin_phase(load(f.sin_phase)), cos_phase(load(f.cos_phase)), omega(splat(d.omega)), accel_x(splat(d.accel_x)),
@@ -406,17 +410,11 @@ struct Quiver {
         delta(splat(d.delta)) {
     ux = v0x - amp_v_x * sin_phase, uy = v0y - amp_v_y * sin_phase;  // guiding_velocity
     g0x = sx + amp_x_x * cos_phase, g0y = sy + amp_x_y * cos_phase;
-    uu = ux * ux + uy * uy;
-    inv_uu = sel(uu > 0, 1 / uu, splat(0.0));
-    speed = sqrt(uu);
-    wobble = accel_norm * inv_omega;
-    speed_bound = speed + wobble;
-    creeping = speed * 6.28318530717958647692 < delta * omega;
-    rounding_rate = sel(creeping, speed, speed_bound);
+    numbers = guide_lanes<PackLanes>(ux * ux + uy * uy, accel_norm, omega, inv_omega, delta);
+    creeping = creeps<PackLanes>(numbers);
+    rounding_rate = sel(creeping, numbers.speed, numbers.speed_bound);
   }
-  LANES GuideLanes<Pack> lanes() const {
-    return {uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, omega, inv_omega};
-  }
+  LANES const GuideLanes<Pack>& lanes() const { return numbers; }
   /// The guide at τ.
   LANES Pack guide_x(Pack tau) const { return g0x + ux * tau; }
   LANES Pack guide_y(Pack tau) const { return g0y + uy * tau; }
@@ -529,7 +527,7 @@ class Lanes {
   Lanes(const Walls& walls, const Quiver& q, Mask live, Pack horizon)
       : walls_(walls),
         all_(walls, table), q_(q), tau_best_(horizon), cur_(walls, 0) {
-    handed_back_ = ~live | ~(q.uu > 0) | q.creeping;  // (a guide standing still: the scalar search)
+    handed_back_ = ~live | ~(q.numbers.uu > 0) | q.creeping;  // (a guide standing still: the scalar search)
     choosing_ = ~handed_back_;
     for (int w = 0; w < walls.count; ++w) wall_windows(q, walls, horizon, choosing_, win_, w);
   }

@@ -1,12 +1,12 @@
 // A driven flight's search through a line or a plane, a circle or a sphere, written once over
-// a number type: each gap's rounding, its windows along the guiding line, the sign of f' in a
+// a number type: the guide's numbers, each gap's rounding, its windows along the guiding line, the sign of f' in a
 // window, its Taylor sample, the span test of a window, and the bracketed Halley step that
 // finds the root.  Included into a namespace by certified_scan.hpp (scan: PlaneGap, SphereGap
 // and monotone_crossing, in double, long double and MPFR, 2-D and 3-D) and by
 // lockstep_kernel.cpp (each SIMD target's lanes).  Its numbers are scalars: the dot products
 // of the flight's vectors, which depend on the dimension, are its callers'.  Besides
 // straight_exit-inl.hpp's traits, `L` supplies L::eps() (the number's), L::min (std::min's
-// order) and L::fraction(a, b).
+// order), L::fraction(a, b) and L::two_pi().
 // (No include guard: included once into each namespace.  It includes nothing: see
 // straight_exit-inl.hpp.  Its lambdas are inlined always: GCC calls a lambda of sixteen lanes
 // out of line, which made the lock-step search a quarter slower.)
@@ -19,6 +19,22 @@ template <class F>
 struct GuideLanes {
   F uu, inv_uu, speed, speed_bound, wobble, delta, accel_norm, omega, inv_omega;
 };
+
+/// A flight's guide numbers from |u|² and the drive's |F|/m, ω, 1/ω and δ = |F|/(mω²).
+template <class L>
+GuideLanes<typename L::Num> guide_lanes(typename L::Num uu, typename L::Num accel_norm, typename L::Num omega,
+                                        typename L::Num inv_omega, typename L::Num delta) {
+  using Num = typename L::Num;
+  const Num speed = L::sqrt(uu), wobble = accel_norm * inv_omega;
+  return {uu,    L::select(uu > L::splat(0), Num(L::splat(1) / uu), L::splat(0)), speed, Num(speed + wobble), wobble,
+          delta, accel_norm, omega, inv_omega};
+}
+/// Does the guide creep, moving less than δ per period (|u| 2π < δ ω)?  The rounding of x(τ)
+/// then grows like |u|, not like the speed bound (forced_flight.hpp's Quiver::rounding_rate).
+template <class L>
+auto creeps(const GuideLanes<typename L::Num>& g) {
+  return g.speed * L::two_pi() < g.delta * g.omega;
+}
 
 /// A sphere (in 2-D a circle) of centre c and radius r, seen from the guide: b = q0·u, cc = |q0|²
 /// and |q0|₁|u|₁ (q0 = g0 − c), the numbers of |q0 + u τ|² = cc + 2bτ + uu τ²; sign +1 when the

@@ -101,17 +101,15 @@ struct Quiver {
   /// velocity relative to the walls at the start; s.x is the position relative to the walls.
   Quiver(const Flight& f, const State& st, const V& guiding_velocity, const V& relative_velocity)
       : flight(f), s(st), u(guiding_velocity), v0(relative_velocity) {
+    using L = ScalarLanes<Real>;
     std::tie(amp_x, amp_v) = drive_amplitudes(f.accel, f.omega);
     inv_omega = 1 / f.omega;
     accel_norm = f.accel.norm();
     g0 = st.x + amp_x * st.cos_phase;
-    uu = u.squaredNorm();
-    inv_uu = uu > 0 ? Real(1 / uu) : Real(0);
-    speed = sqrt(uu);
-    wobble = accel_norm * inv_omega;
-    speed_bound = speed + wobble;
     delta = accel_norm * inv_omega * inv_omega;
-    creeping = speed * boost::math::constants::two_pi<Real>() < delta * f.omega;  // |u| T < δ
+    const auto g = scan::guide_lanes<L>(u.squaredNorm(), accel_norm, f.omega, inv_omega, delta);
+    uu = g.uu, inv_uu = g.inv_uu, speed = g.speed, wobble = g.wobble, speed_bound = g.speed_bound;
+    creeping = scan::creeps<L>(g);
     rounding_rate = creeping ? speed : speed_bound;
   }
   V guide(const Real& tau) const { return g0 + u * tau; }

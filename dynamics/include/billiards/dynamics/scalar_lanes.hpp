@@ -6,6 +6,8 @@
 
 #include "billiards/dynamics/predicates.hpp"
 
+#include <boost/math/constants/constants.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -27,6 +29,7 @@ struct ScalarLanes {
   static Num fraction(int a, int b) { return Num(Num(a) / b); }
   static Num never() { return Num(std::numeric_limits<double>::infinity()); }
   static Num eps() { return std::numeric_limits<Real>::epsilon(); }
+  static Num two_pi() { return boost::math::constants::two_pi<Real>(); }
   static Num select(bool m, const Num& a, const Num& b) { return m ? a : b; }
   static bool select_truth(bool m, bool a, bool b) { return m ? a : b; }
   static bool splat_truth(bool a) { return a; }
