@@ -211,6 +211,8 @@ TEST_CASE("invalid meshes are rejected with the reason") {
   // Headers announcing more than the file holds are refused before anything is allocated for them.
   mesh_rejected("OFF\n1000000000 2000000000 0\n0 0 0\n", "its header announces 1e+09 vertices and 2e+09 faces, more than its");
   mesh_rejected("# a comment\nOFF 12 4 0\n0 0 0\n", "its header announces 12 vertices and 4 faces");
+  mesh_rejected("OFF)# a comment after the keyword, no space before it\n4 42222222 9\n",
+                "its header announces 4 vertices and 4.22222e+07 faces");
   mesh_rejected("COFF\n" + cube_vertices + cube_faces, "coloured OFF (COFF) is not read");
   mesh_rejected("OFF\n" + cube_vertices + "3 0 1 2\n200000000000 0 1 2\n" + cube_faces.substr(16),
                 "face 1 announces 200000000000 vertices, more than its");

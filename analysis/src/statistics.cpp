@@ -91,12 +91,12 @@ namespace {
 /// max(F(hi) − a/n, b/n − F(lo)), and when that bound is below the distance found so far they
 /// need no evaluation.  The values are tallied into buckets of equal width (one pass, no sort),
 /// ranges of buckets are refined level by level while their bound stays above the distance,
-/// and the buckets that still may hold the largest term (about a hundred of 6·10⁴ at n = 10⁶)
+/// and the buckets that still may hold the largest term (about 60 of 6·10⁴ at n = 10⁶)
 /// are the only ones whose values are gathered (a second pass), sorted and bisected the same
 /// way.  The terms evaluated are the same expressions as in a sweep over the sorted sample,
 /// and the skipped ones are smaller, so the distance is the sweep's to the bit — as long as F,
-/// as computed, never decreases by more than `margin` (rounding of a CDF is ~1e-15).  About
-/// 10⁴ evaluations of F for 10⁶ values instead of 10⁶.
+/// as computed, never decreases by more than `margin` (rounding of a CDF is ~1e-15).  A few
+/// 10³ evaluations of F for 10⁶ values instead of 10⁶.
 class KsSearch {
  public:
   KsSearch(std::span<const double> x, const std::function<double(double)>& cdf)

@@ -1,7 +1,7 @@
 // A driven flight's search through a line or a plane, a circle or a sphere, written once over
-// a number type: the guide's numbers, each gap's rounding, its windows along the guiding line, the sign of f' in a
-// window, its Taylor sample, the span test of a window, and the bracketed Halley step that
-// finds the root.  Included into a namespace by certified_scan.hpp (scan: PlaneGap, SphereGap
+// a number type: the guide's numbers, each gap's rounding, its windows along the guiding line,
+// the sign of f' in a window, its Taylor sample, the span test of a window, and the bracketed
+// Halley step that finds the root.  Included into a namespace by certified_scan.hpp (scan: PlaneGap, SphereGap
 // and monotone_crossing, in double, long double and MPFR, 2-D and 3-D) and by
 // lockstep_kernel.cpp (each SIMD target's lanes).  Its numbers are scalars: the dot products
 // of the flight's vectors, which depend on the dimension, are its callers'.  Besides
