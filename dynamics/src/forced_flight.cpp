@@ -145,24 +145,29 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
     detail::try_every_wall(table, *this, best);
   } else {
     first_hit_in_windows(table, quiver, best, phase);
-    // The kinds without windows here (elliptic arcs, searched as unit arcs by the mapped
-    // flight), wall by wall.
-    table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
-      if constexpr (!has_windows<W, decltype(quiver)>) {
-        for (int i = 0, n = int(walls.size()); i < n; ++i) {
-          const Real t = exit_time(walls[i], best.t);
-          if (t < best.t) {
-            best.t = t;
-            best.wall = {kind, i};
-            phase = {};
-          }
-        }
-      }
-    });
+    if (first_hit_without_windows(table, best)) phase = {};
   }
   if (!best.found()) return {best, {}};
   // (The state made in place, as `collision` makes the hit: see there.)
   return {best, quiver.flight.advance(quiver.s, best.t, phase)};
+}
+
+template <class Flight>
+bool DrivenScan<Flight>::first_hit_without_windows(const BasicTable<Real>& table, BasicHit<Real>& best) const {
+  bool earlier = false;
+  table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+    if constexpr (!has_windows<W, decltype(quiver)>) {
+      for (int i = 0, n = int(walls.size()); i < n; ++i) {
+        const Real t = exit_time(walls[i], best.t);
+        if (t < best.t) {
+          best.t = t;
+          best.wall = {kind, i};
+          earlier = true;
+        }
+      }
+    }
+  });
+  return earlier;
 }
 
 template <class Flight>

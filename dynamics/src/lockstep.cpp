@@ -19,7 +19,11 @@ LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flig
   const auto& segments = table.segments();
   const auto& arcs = table.arcs();
   const std::size_t count = segments.size() + arcs.size();
-  usable_ = kernel && count > 0 && table.wall_count() == count && count <= std::size_t(lockstep::max_walls);
+  // (Elliptic arcs are searched after the lanes, as DrivenScan::first_hit searches them after
+  // the windows; a table of more walls than that searches in windows is searched wall by wall.)
+  usable_ = kernel && count > 0 && count <= std::size_t(lockstep::max_walls) &&
+            table.wall_count() <= std::size_t(scan::windows_in_time_order_walls);
+  without_windows_ = table.wall_count() > count;
   if (!usable_) return;
   // The drive's numbers as every flight's Quiver computes them.
   DrivenState rest;
@@ -72,25 +76,34 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
       continue;
     }
     // As DrivenScan::first_hit and `collision` make the hit: the kernel made its state, or
-    // left it to be made here.
+    // left it to be made here; a wall without windows may be hit before.
     auto& hit = hits[i] = {};
     hit.t = t_end[i];
-    if (out.wall[i] < 0) continue;
-    hit.wall = out.wall[i] < walls_.segments ? WallId{wall_kind::segment, out.wall[i]}
-                                             : WallId{wall_kind::arc, out.wall[i] - walls_.segments};
-    hit.midpoint_inside = out.midpoint_inside[i];
-    if (out.made[i]) {
-      hit.t = out.t[i];
-      auto& r = hit.state;
-      r.x = Vec2(out.x[i], out.y[i]), r.v = Vec2(out.vx[i], out.vy[i]), r.t = out.t[i];
-      r.phase = Phase(out.phase_hi[i], out.phase_lo[i]), r.sin_phase = out.sin_phase[i], r.cos_phase = out.cos_phase[i];
-      hit.point = Vec2(out.point_x[i], out.point_y[i]), hit.normal = Vec2(out.normal_x[i], out.normal_y[i]);
-      continue;
+    if (out.wall[i] >= 0) lane_hit(s, out, i, hit);
+    if (without_windows_ && flight_->scan_from(s).first_hit_without_windows(*table_, hit)) {
+      hit.midpoint_inside = false;
+      hit.state = flight_->advance(s, hit.t);
+      std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x, hit.state.v);
     }
-    hit.t = s.t + out.tau[i];
-    hit.state = flight_->advance(s, hit.t, PhaseSample<double>{out.theta[i], out.sin[i], out.cos[i]});
-    std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x, hit.state.v);
   }
+}
+
+void LockstepTable::lane_hit(const DrivenState& s, const lockstep::Hits& out, int i,
+                             FlightHit<PeriodicDriveFlight>& hit) const {
+  hit.wall = out.wall[i] < walls_.segments ? WallId{wall_kind::segment, out.wall[i]}
+                                           : WallId{wall_kind::arc, out.wall[i] - walls_.segments};
+  hit.midpoint_inside = out.midpoint_inside[i];
+  if (out.made[i]) {
+    hit.t = out.t[i];
+    auto& r = hit.state;
+    r.x = Vec2(out.x[i], out.y[i]), r.v = Vec2(out.vx[i], out.vy[i]), r.t = out.t[i];
+    r.phase = Phase(out.phase_hi[i], out.phase_lo[i]), r.sin_phase = out.sin_phase[i], r.cos_phase = out.cos_phase[i];
+    hit.point = Vec2(out.point_x[i], out.point_y[i]), hit.normal = Vec2(out.normal_x[i], out.normal_y[i]);
+    return;
+  }
+  hit.t = s.t + out.tau[i];
+  hit.state = flight_->advance(s, hit.t, PhaseSample<double>{out.theta[i], out.sin[i], out.cos[i]});
+  std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x, hit.state.v);
 }
 
 }  // namespace billiards::dynamics

@@ -412,7 +412,7 @@ struct Quiver {
     g0x = sx + amp_x_x * cos_phase, g0y = sy + amp_x_y * cos_phase;
     numbers = guide_lanes<PackLanes>(ux * ux + uy * uy, accel_norm, omega, inv_omega, delta);
     creeping = creeps<PackLanes>(numbers);
-    rounding_rate = sel(creeping, numbers.speed, numbers.speed_bound);
+    rounding_rate = ::billiards::dynamics::lockstep::HWY_NAMESPACE::rounding_rate<PackLanes>(numbers, creeping);
   }
   LANES const GuideLanes<Pack>& lanes() const { return numbers; }
   /// The guide at τ.

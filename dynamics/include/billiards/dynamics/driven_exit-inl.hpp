@@ -30,10 +30,16 @@ GuideLanes<typename L::Num> guide_lanes(typename L::Num uu, typename L::Num acce
           delta, accel_norm, omega, inv_omega};
 }
 /// Does the guide creep, moving less than δ per period (|u| 2π < δ ω)?  The rounding of x(τ)
-/// then grows like |u|, not like the speed bound (forced_flight.hpp's Quiver::rounding_rate).
+/// then grows like |u|, not like the speed bound (`rounding_rate`).
 template <class L>
 auto creeps(const GuideLanes<typename L::Num>& g) {
   return g.speed * L::two_pi() < g.delta * g.omega;
+}
+/// How fast the rounding of x(τ) grows with τ: like |u| for a creeping guide (whose phase is
+/// reduced as advance() reduces it: Quiver::at), else like the speed bound.
+template <class L, class Truth>
+typename L::Num rounding_rate(const GuideLanes<typename L::Num>& g, const Truth& creeping) {
+  return L::select(creeping, g.speed, g.speed_bound);
 }
 
 /// A sphere (in 2-D a circle) of centre c and radius r, seen from the guide: b = q0·u, cc = |q0|²

@@ -110,7 +110,7 @@ struct Quiver {
     const auto g = scan::guide_lanes<L>(u.squaredNorm(), accel_norm, f.omega, inv_omega, delta);
     uu = g.uu, inv_uu = g.inv_uu, speed = g.speed, wobble = g.wobble, speed_bound = g.speed_bound;
     creeping = scan::creeps<L>(g);
-    rounding_rate = creeping ? speed : speed_bound;
+    rounding_rate = scan::rounding_rate<L>(g, creeping);
   }
   V guide(const Real& tau) const { return g0 + u * tau; }
   /// Its numbers as driven_exit-inl.hpp reads them (in place).
@@ -189,6 +189,10 @@ struct DrivenScan {
   /// opens after the collision found is never sampled; in a window where the sign of f' is
   /// certain, the root is found by a bracketed Newton iteration instead of the certified scan.
   FlightHit<Flight> first_hit(const BasicTable<Real>& table, const Real& t_end) const;
+  /// After the windows' first hit (`best`, t_end if none): the walls without windows here
+  /// (elliptic arcs, searched as unit arcs by the mapped flight), wall by wall, each up to the
+  /// best hit so far; true if one is hit earlier (`best` updated).
+  bool first_hit_without_windows(const BasicTable<Real>& table, BasicHit<Real>& best) const;
 };
 
 /// Uniform periodic drive F cos(ω t + phase) on a particle of mass m (U = 0), in 2-D or (in

@@ -36,7 +36,8 @@ Kernel chosen_kernel();
 }  // namespace lockstep
 
 /// A table whose driven flights can be searched in lock step (segments and arcs, at most
-/// lockstep::max_walls of them), ready for `collisions`.
+/// lockstep::max_walls of them, and any elliptic arcs, searched after the lanes as
+/// DrivenScan::first_hit searches them), ready for `collisions`.
 class LockstepTable {
  public:
   static constexpr int lanes = lockstep::lanes;
@@ -51,6 +52,9 @@ class LockstepTable {
                   FlightHit<PeriodicDriveFlight>* hits) const;
 
  private:
+  /// The hit the kernel found in lane i (it made the state there, or left it to be made).
+  void lane_hit(const DrivenState& s, const lockstep::Hits& out, int i, FlightHit<PeriodicDriveFlight>& hit) const;
+
   const Table* table_;
   const PeriodicDriveFlight* flight_;
   lockstep::Kernel kernel_;
@@ -58,6 +62,7 @@ class LockstepTable {
   lockstep::Drive drive_;
   lockstep::Cells cells_;
   bool usable_ = false;
+  bool without_windows_ = false;  // elliptic arcs
 };
 
 }  // namespace billiards::dynamics
