@@ -44,6 +44,32 @@ dynamics::Table table_of(const std::string& shape) {
   return dynamics::Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + shape + ".yaml").region);
 }
 
+// A circle cut into n arcs.
+dynamics::Table circle_of_arcs(int n) {
+  geometry::Region2 circle;
+  for (int k = 0; k < n; ++k) {
+    geometry::Arc arc{Vec2(0, 0), 1, 2 * pi * k / n, 2 * pi / n, {}, {}};
+    arc.source = arc.point_at(arc.start);
+    arc.target = arc.point_at(arc.start + arc.sweep);
+    circle.outer.pieces.push_back(arc);
+    circle.outer.where.emplace_back();
+  }
+  return dynamics::Table(circle);
+}
+
+// A gear: the polygon of 2 teeth vertices on radii 1 and 3/4 in turn, around a disk of radius
+// 0.3 if `hole` (2 teeth segments, and an arc).
+dynamics::Table gear(int teeth, bool hole) {
+  std::string yaml = "name: gear\nboundary:\n  polygon: [";
+  for (int k = 0; k < 2 * teeth; ++k) {
+    const double r = k % 2 ? 0.75 : 1, a = pi * k / teeth;
+    yaml += (k ? ", [" : "[") + std::to_string(r * std::cos(a)) + ", " + std::to_string(r * std::sin(a)) + "]";
+  }
+  yaml += "]\n";
+  if (hole) yaml += "holes:\n  - circle: {center: [0, 0], radius: 0.3}\n";
+  return dynamics::Table(geometry::parse_shape(yaml, "gear").region);
+}
+
 // Bit for bit: the same doubles (the phase's two among them), not merely equal ones (+0 and −0 differ).
 template <class T>
 bool same_bits(const T& a, const T& b) {
@@ -90,12 +116,18 @@ TEST_CASE("lock step: each batch's hits are the scalar search's, bit for bit") {
   // Horizons: none (handed back to the scalar search), a run's record time, and horizons short
   // enough to end many flights before their walls (found() false).
   const double horizons[] = {dynamics::never, 20, 1e-3, 0.03};
-  // Arcs, segments (the stadium, the mushroom, polygons), both with holes (Sinai, annulus), and
-  // elliptic arcs beside them (searched after the lanes).
+  // Arcs, segments (the stadium, the mushroom, polygons), both with holes (Sinai, annulus),
+  // elliptic arcs beside them (searched after the lanes), and more walls than one vector of
+  // lanes holds, up to lockstep::max_walls (the gear: 12 segments around a disk; a gear of 16
+  // segments; a circle of 12 arcs).
+  std::vector<std::pair<std::string, dynamics::Table>> tables;
   for (const char* shape : {"clover", "circle", "annulus", "stadium", "mushroom", "sinai", "l-room", "triangle",
-                            "sinai-ellipse", "elliptic-stadium"})
+                            "sinai-ellipse", "elliptic-stadium", "gear"})
+    tables.emplace_back(shape, table_of(shape));
+  tables.emplace_back("gear of 16", gear(dynamics::lockstep::max_walls / 2, false));
+  tables.emplace_back("circle of 12 arcs", circle_of_arcs(12));
+  for (const auto& [shape, table] : tables)
     for (const double omega : {4 * pi, 10 * pi, 40 * pi, 2560 * pi}) {
-      const auto table = table_of(shape);
       const PeriodicDriveFlight flight{10 / std::sqrt(2.0) * Vec2(1, 1), omega, 0.3};
       const auto states = states_along_trajectories(table, flight, 6, 60);
       for (const auto& [name, bit, kernel, automatic] : kernels()) {
@@ -160,19 +192,14 @@ TEST_CASE("lock step: tables of elliptic arcs alone or of too many walls are lef
     const auto table = table_of(shape);
     CHECK_FALSE(dynamics::LockstepTable(table, flight, kernels().back().kernel).usable());
   }
-  // Arcs only, but more than the kernel holds: a circle cut into max_walls + 1 arcs.
-  geometry::Region2 circle;
+  // More walls than the kernel holds: a circle cut into max_walls + 1 arcs, a gear of max_walls
+  // segments around a hole; max_walls do fit.
   const int arcs = dynamics::lockstep::max_walls + 1;
-  for (int k = 0; k < arcs; ++k) {
-    geometry::Arc arc{Vec2(0, 0), 1, 2 * pi * k / arcs, 2 * pi / arcs, {}, {}};
-    arc.source = arc.point_at(arc.start);
-    arc.target = arc.point_at(arc.start + arc.sweep);
-    circle.outer.pieces.push_back(arc);
-    circle.outer.where.emplace_back();
-  }
-  const dynamics::Table many(circle);
+  const dynamics::Table many = circle_of_arcs(arcs);
   REQUIRE(many.arcs().size() == std::size_t(arcs));
   CHECK_FALSE(dynamics::LockstepTable(many, flight, kernels().back().kernel).usable());
+  CHECK_FALSE(dynamics::LockstepTable(gear(dynamics::lockstep::max_walls / 2, true), flight, kernels().back().kernel).usable());
+  CHECK(dynamics::LockstepTable(circle_of_arcs(arcs - 1), flight, kernels().back().kernel).usable());
   // No kernel (BILLIARDS_SIMD=scalar): not usable either.
   CHECK_FALSE(dynamics::LockstepTable(table_of("clover"), flight, nullptr).usable());
 }

@@ -46,7 +46,8 @@ constexpr int W = lanes;
 using D = hn::ScalableTag<double>;       // the target's vector of doubles
 using DI = hn::RebindToSigned<D>;        // and of 64-bit integers
 constexpr int L = int(hn::MaxLanes(D()));
-static_assert(W % L == 0 && L <= max_walls, "a Pack is whole vectors; a table's walls fill one or more");
+static_assert(W % L == 0 && L <= max_walls && max_walls <= W && max_walls % L == 0,
+              "a Pack is whole vectors; a table's walls fill one or more, and fit in a Pack");
 constexpr int K = W / L;  // vectors in a Pack
 
 // Every function here is inlined: a Pack passed to a call costs more than most of them (and
@@ -187,13 +188,15 @@ LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_as(const T* x) {
 LANES Pack load(const double* x) { return load_as(x); }
 LANES Mask load_mask(const std::int64_t* x) { return load_as(x); }
 LANES void store(double* x, Pack p) { EACH_VECTOR hn::StoreU(p.v[k], D(), x + k * L); }
-/// A table's field (max_walls entries, in max_walls / L vectors) in each group of vectors, for `pick`.
+/// A table's field (max_walls entries, in max_walls / L of a Pack's vectors), for `pick`.
 template <class T>
 LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_walls(const T* x) {
   Parts<hn::Vec<hn::Rebind<T, D>>> r;
   EACH_VECTOR r.v[k] = hn::LoadU(hn::Rebind<T, D>(), x + k * L % max_walls);
   return r;
 }
+/// The vectors of load_walls that hold a table's first `count` walls.
+constexpr int wall_vectors(int count) { return (count + L - 1) / L; }
 /// Each lane's values, to be read one by one.
 template <class T>
 struct Values {
@@ -228,16 +231,17 @@ LANES Pack from_bits(Mask x) { return each<VD>(x, [](VI v) LANES_LAMBDA { return
 /// std::max(a, b) and std::min(a, b), as the scalar code has them: (a < b) ? b : a, (b < a) ? b : a.
 LANES Pack max(Pack a, Pack b) { return sel(a < b, b, a); }
 LANES Pack min(Pack a, Pack b) { return sel(b < a, b, a); }
-/// A table's field (load_walls) for each lane's wall index (taken modulo max_walls).
+/// A table's field (load_walls, its walls in the first `vectors`) for each lane's wall index
+/// (taken modulo max_walls; an index beyond the table's walls reads a padding wall or any wall).
 template <class V>
-LANES Parts<V> pick(Parts<V> table, Mask index) {
+LANES Parts<V> pick(Parts<V> table, Mask index, int vectors) {
   const hn::DFromV<V> d;
   Parts<V> r;
   EACH_VECTOR {
     const VI i = hn::And(index.v[k], hn::Set(DI(), max_walls - 1));
     const auto lane = hn::IndicesFromVec(d, hn::And(i, hn::Set(DI(), L - 1)));
     r.v[k] = hn::TableLookupLanes(table.v[0], lane);
-    for (int j = 1; j < max_walls / L; ++j)  // (the vector that holds entry i)
+    for (int j = 1; j < vectors; ++j)  // (the vector that holds entry i)
       r.v[k] = hn::IfThenElse(hn::RebindMask(d, hn::Set(DI(), j * L - 1) < i), hn::TableLookupLanes(table.v[j], lane), r.v[k]);
   }
   return r;
@@ -328,13 +332,14 @@ struct Wall {
   Mask full, half;
   Pack ax, ay, bx, by, nx, ny, dir_x, dir_y, dir_norm, span_tol;  // a segment
   Wall() = default;
-  /// Wall number wall[i] in lane i, from the walls' fields in lanes (`Wall(walls, mix)`).
-  LANES Wall(const Wall& all, Mask wall, Mix mix) {
-#define PICK(f) f = pick(all.f, wall);
+  /// Wall number wall[i] in lane i, from the walls' fields in lanes (`Wall(walls, mix)`), a
+  /// table whose walls fill `vectors` of them.
+  LANES Wall(const Wall& all, Mask wall, Mix mix, int vectors) {
+#define PICK(f) f = pick(all.f, wall, vectors);
     WALL_FIELDS(PICK, has_arcs(mix), has_segments(mix))
 #undef PICK
   }
-  /// The walls of a table, one per lane (max_walls = lanes).
+  /// The walls of a table, one per lane (in as many of a Pack's vectors as they need).
   LANES Wall(const Walls& w, Mix mix) {
 #define LOAD(f) f = load_walls(w.f);
     WALL_FIELDS(LOAD, has_arcs(mix), has_segments(mix))
@@ -570,7 +575,7 @@ class Lanes {
       const Pack vx = q.v0x + q.amp_v_x * (sn - q.sin_phase), vy = q.v0y + q.amp_v_y * (sn - q.sin_phase);
       const Pack x = (q.sx + q.ux * tau) - q.amp_x_x * (cs - q.cos_phase);
       const Pack y = (q.sy + q.uy * tau) - q.amp_x_y * (cs - q.cos_phase);
-      const Wall a(all_, best_wall_, table);
+      const Wall a(all_, best_wall_, table, wall_vectors(walls_.count));
       Contact c;
       for_kinds(a, found, [&](const auto& kinds) LANES_LAMBDA {
         c = kinds.by_kind([&]() LANES_LAMBDA { return arc_contact(a, x, y, vx, vy); },
@@ -647,7 +652,7 @@ class Lanes {
     for (int j = 0; j < slots; ++j) win_.open[j] &= ~(go & (slot == j));
     if (!any(go)) return;
     const Mask wall = slot >> 1;
-    const Wall a(all_, wall, table);
+    const Wall a(all_, wall, table, wall_vectors(walls_.count));
     end = min(end, tau_best_);
     for_kinds(a, go, [&](const auto& kinds) LANES_LAMBDA { begin_searches(kinds, go, wall, a, start, end, margin, below); });
   }

@@ -12,11 +12,12 @@ namespace billiards::dynamics {
 namespace lockstep {
 
 /// Particles searched together, one per lane, and the most walls a table searched in lock step
-/// may have.  (Sixteen lanes fill two AVX-512 registers, four AVX2 or eight SSE4 registers,
-/// whose independent operations interleave and hide each other's latency; more lanes only
-/// lengthen the rounds in which finished lanes wait for the rest.)
+/// may have (a table's walls fit in a lane's vectors, where each lane picks its own).  (Sixteen
+/// lanes fill two AVX-512 registers, four AVX2 or eight SSE4 registers, whose independent
+/// operations interleave and hide each other's latency; more lanes only lengthen the rounds in
+/// which finished lanes wait for the rest.)
 inline constexpr int lanes = 16;
-inline constexpr int max_walls = 8;
+inline constexpr int max_walls = 16;
 
 /// A table's segments and arcs, field by field (BasicSegmentWall's and BasicArcWall's), the
 /// segments first as the scalar search numbers them, padded to max_walls: each wall fills the
