@@ -195,8 +195,12 @@ LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_walls(const T* x) {
   EACH_VECTOR r.v[k] = hn::LoadU(hn::Rebind<T, D>(), x + k * L % max_walls);
   return r;
 }
-/// The vectors of load_walls that hold a table's first `count` walls.
-constexpr int wall_vectors(int count) { return (count + L - 1) / L; }
+/// The vectors of load_walls that `pick` looks in: those that hold the first half of
+/// max_walls (a table of so few walls), or all.
+template <int n>
+using WallVectors = std::integral_constant<int, n>;
+using HalfWallVectors = WallVectors<max_walls / 2 / L>;
+using AllWallVectors = WallVectors<max_walls / L>;
 /// Each lane's values, to be read one by one.
 template <class T>
 struct Values {
@@ -233,8 +237,8 @@ LANES Pack max(Pack a, Pack b) { return sel(a < b, b, a); }
 LANES Pack min(Pack a, Pack b) { return sel(b < a, b, a); }
 /// A table's field (load_walls, its walls in the first `vectors`) for each lane's wall index
 /// (taken modulo max_walls; an index beyond the table's walls reads a padding wall or any wall).
-template <class V>
-LANES Parts<V> pick(Parts<V> table, Mask index, int vectors) {
+template <class V, int vectors>
+LANES Parts<V> pick(Parts<V> table, Mask index, WallVectors<vectors>) {
   const hn::DFromV<V> d;
   Parts<V> r;
   EACH_VECTOR {
@@ -334,7 +338,8 @@ struct Wall {
   Wall() = default;
   /// Wall number wall[i] in lane i, from the walls' fields in lanes (`Wall(walls, mix)`), a
   /// table whose walls fill `vectors` of them.
-  LANES Wall(const Wall& all, Mask wall, Mix mix, int vectors) {
+  template <int n>
+  LANES Wall(const Wall& all, Mask wall, Mix mix, WallVectors<n> vectors) {
 #define PICK(f) f = pick(all.f, wall, vectors);
     WALL_FIELDS(PICK, has_arcs(mix), has_segments(mix))
 #undef PICK
@@ -575,7 +580,7 @@ class Lanes {
       const Pack vx = q.v0x + q.amp_v_x * (sn - q.sin_phase), vy = q.v0y + q.amp_v_y * (sn - q.sin_phase);
       const Pack x = (q.sx + q.ux * tau) - q.amp_x_x * (cs - q.cos_phase);
       const Pack y = (q.sy + q.uy * tau) - q.amp_x_y * (cs - q.cos_phase);
-      const Wall a(all_, best_wall_, table, wall_vectors(walls_.count));
+      const Wall a = wall_of(best_wall_);
       Contact c;
       for_kinds(a, found, [&](const auto& kinds) LANES_LAMBDA {
         c = kinds.by_kind([&]() LANES_LAMBDA { return arc_contact(a, x, y, vx, vy); },
@@ -652,7 +657,7 @@ class Lanes {
     for (int j = 0; j < slots; ++j) win_.open[j] &= ~(go & (slot == j));
     if (!any(go)) return;
     const Mask wall = slot >> 1;
-    const Wall a(all_, wall, table, wall_vectors(walls_.count));
+    const Wall a = wall_of(wall);
     end = min(end, tau_best_);
     for_kinds(a, go, [&](const auto& kinds) LANES_LAMBDA { begin_searches(kinds, go, wall, a, start, end, margin, below); });
   }
@@ -681,6 +686,13 @@ class Lanes {
                                     [&]() LANES_LAMBDA { return jerk_bound<PackLanes>(plane_gap_of(q_, a), q_.lanes(), margin); });
     jerk_ = sel(begin, jerk, jerk_);
     tau_ = sel(begin, sel(below, start + (end - start) / 2, start), tau_);
+  }
+
+  /// Wall number wall[i] in lane i, looked up in the first half of the table's vectors where its
+  /// walls fit there (the clover's eight: half the look-ups, one vector on AVX-512).
+  LANES Wall wall_of(Mask wall) const {
+    if (walls_.count <= max_walls / 2) return Wall(all_, wall, table, HalfWallVectors{});
+    return Wall(all_, wall, table, AllWallVectors{});
   }
 
   /// f(Kinds) for the kinds of the walls w of the lanes that `count`: the table's one kind, or
