@@ -154,20 +154,11 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
 
 template <class Flight>
 bool DrivenScan<Flight>::first_hit_without_windows(const BasicTable<Real>& table, BasicHit<Real>& best) const {
-  bool earlier = false;
+  const Real before = best.t;
   table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
-    if constexpr (!has_windows<W, decltype(quiver)>) {
-      for (int i = 0, n = int(walls.size()); i < n; ++i) {
-        const Real t = exit_time(walls[i], best.t);
-        if (t < best.t) {
-          best.t = t;
-          best.wall = {kind, i};
-          earlier = true;
-        }
-      }
-    }
+    if constexpr (!has_windows<W, decltype(quiver)>) detail::try_walls(walls, kind, *this, best);
   });
-  return earlier;
+  return best.t < before;
 }
 
 template <class Flight>
