@@ -146,13 +146,8 @@ TEST_CASE("the containment test's classified cells answer as the crossing count 
       const auto w = ids[std::size_t(rng.uniform() * ids.size())];
       // The nearest point of wall w's line or circle, then off it along the normal.
       Vec2 foot, n;
-      if (w.kind == dynamics::wall_kind::arc) {
-        std::tie(foot, n) = table.arcs()[w.index].radial_contact(p);
-      } else {
-        const auto& seg = table.segments()[w.index];
-        foot = seg.project(p);
-        n = seg.normal;
-      }
+      if (w.kind == dynamics::wall_kind::arc) std::tie(foot, n) = table.arcs()[w.index].radial_contact(p);
+      else std::tie(foot, n) = table.segments()[w.index].contact(p, Vec2::Zero());
       for (const double k : {-3.0, -0.5, 0.5, 3.0}) check(foot + k * table.tolerance() * n);
     }
     // A segment certified inside (both ends in one inside cell, or in neighbouring cells of an

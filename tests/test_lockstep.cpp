@@ -57,8 +57,8 @@ dynamics::Table circle_of_arcs(int n) {
   return dynamics::Table(circle);
 }
 
-// A gear: the polygon of 2 teeth vertices on radii 1 and 3/4 in turn, around a disk of radius
-// 0.3 if `hole` (2 teeth segments, and an arc).
+// A gear: the polygon of 2·teeth vertices on radii 1 and 3/4 in turn, around a disk of radius
+// 0.3 if `hole` (2·teeth segments, and an arc).
 dynamics::Table gear(int teeth, bool hole) {
   std::string yaml = "name: gear\nboundary:\n  polygon: [";
   for (int k = 0; k < 2 * teeth; ++k) {

@@ -50,8 +50,8 @@ auto BasicPeriodicDriveFlight<Real, D>::advance(const State& s, const Real& t, c
   State r = s;
   set_phase_at(r, s, omega, tau, near);
   const auto [amp_x, amp_v] = drive_amplitudes(accel, omega);
-  r.v = s.v + amp_v * Real(r.sin_phase - s.sin_phase);
-  r.x = s.x + (s.v - amp_v * s.sin_phase) * tau - amp_x * Real(r.cos_phase - s.cos_phase);
+  r.v = scan::advanced_velocity(s.v, amp_v, r.sin_phase, s.sin_phase);
+  r.x = scan::advanced_position(s.x, scan::guide_velocity(s.v, amp_v, s.sin_phase), tau, amp_x, r.cos_phase, s.cos_phase);
   r.t = t;
   return r;
 }
@@ -184,7 +184,7 @@ auto BasicQuiveringWallFlight<Real>::advance(const State& s, const Real& t, cons
   const Real tau = t - s.t;
   State r = s;
   set_phase_at(r, s, omega, tau, near);
-  r.x = s.x + s.v * tau - drive_amplitudes(accel, omega).first * Real(r.cos_phase - s.cos_phase);
+  r.x = scan::advanced_position(s.x, s.v, tau, drive_amplitudes(accel, omega).first, r.cos_phase, s.cos_phase);
   r.t = t;
   return r;
 }

@@ -6,14 +6,14 @@
 //
 // The search's arithmetic is the scalar search's own source, with the traits of sixteen lanes
 // (PackLanes): drive_phase-inl.hpp (the phase's advance and reduction, its sine and cosine and
-// their shift), driven_exit-inl.hpp (SphereGap's numbers, windows, sign of f' and Taylor
-// samples, the span test of a window, monotone_crossing's Halley step and certain landing) and
-// straight_exit-inl.hpp (the span test of a point).  This file holds what differs: the rounds
-// in which each lane chooses its next window or steps its root search (first_hit_in_windows
-// and monotone_crossing's loops, branches become selections), the flight's guiding line and
-// its motion (Quiver, computed as its constructor and `motion` do; the guide's numbers are
-// driven_exit-inl.hpp's guide_lanes and creeps), and the state at the hit
-// (PeriodicDriveFlight::advance and BasicArcWall::contact).  A lane leaves the search
+// their shift), driven_exit-inl.hpp (the guide's numbers, creeping, SphereGap's numbers,
+// windows, sign of f' and Taylor samples, the span test of a window, monotone_crossing's
+// Halley step and certain landing, and the drive's motion: the guide, Quiver's position and
+// velocity, the hit's state as PeriodicDriveFlight::advance makes it) and
+// straight_exit-inl.hpp (the span test of a point, the hit's contact point and normal).  This
+// file holds what differs: the rounds in which each lane chooses its next window or steps its
+// root search (first_hit_in_windows and monotone_crossing's loops, branches become
+// selections) and the walls and flights in lanes.  A lane leaves the search
 // (`handed_back`) wherever the scalar search would take a path not run here.  The lanes use
 // only Highway's operations that round as IEEE (no fused multiply-add: -ffp-contract=off keeps
 // the compiler from fusing them either), builtins and the functions of the files above and this
@@ -418,8 +418,8 @@ struct Quiver {
         accel_y(splat(d.accel_y)), amp_x_x(splat(d.amp_x_x)), amp_x_y(splat(d.amp_x_y)), amp_v_x(splat(d.amp_v_x)),
         amp_v_y(splat(d.amp_v_y)), accel_norm(splat(d.accel_norm)), inv_omega(splat(d.inv_omega)),
         delta(splat(d.delta)) {
-    ux = v0x - amp_v_x * sin_phase, uy = v0y - amp_v_y * sin_phase;  // guiding_velocity
-    g0x = sx + amp_x_x * cos_phase, g0y = sy + amp_x_y * cos_phase;
+    ux = guide_velocity(v0x, amp_v_x, sin_phase), uy = guide_velocity(v0y, amp_v_y, sin_phase);
+    g0x = guide_start(sx, amp_x_x, cos_phase), g0y = guide_start(sy, amp_x_y, cos_phase);
     numbers = guide_lanes<PackLanes>(ux * ux + uy * uy, accel_norm, omega, inv_omega, delta);
     creeping = creeps<PackLanes>(numbers);
     rounding_rate = ::billiards::dynamics::lockstep::HWY_NAMESPACE::rounding_rate<PackLanes>(numbers, creeping);
@@ -501,32 +501,9 @@ LANES Mask within_span(const Wall& w, const Kinds<mix>& kinds, Pack x, Pack y) {
                        [&]() LANES_LAMBDA { return within_span(l, w.segment_lanes(), x, y); });
 }
 
-/// A hit's point on the wall and the region's outward normal there (Table::contact).
-struct Contact {
-  Pack x, y, nx, ny;
-};
-LANES Contact sel(Mask m, const Contact& a, const Contact& b) {
+/// A hit's point and normal (straight_exit-inl.hpp's ContactLanes) of a where m, else b's.
+LANES ContactLanes<Pack> sel(Mask m, const ContactLanes<Pack>& a, const ContactLanes<Pack>& b) {
   return {sel(m, a.x, b.x), sel(m, a.y, b.y), sel(m, a.nx, b.nx), sel(m, a.ny, b.ny)};
-}
-/// BasicArcWall::contact: (x, y) moved onto the circle along the flight (one Newton step), or
-/// radially where that step is not short; the outward normal there.
-LANES Contact arc_contact(const Wall& a, Pack x, Pack y, Pack vx, Pack vy) {
-  const Pack ux = x - a.cx, uy = y - a.cy;
-  const Pack rate = 2 * (ux * vx + uy * vy), s = -((ux * ux - a.r * a.r) + uy * uy) / rate;
-  const Pack v1 = abs(vx) + abs(vy);
-  const Mask along = (abs(s) * v1 <= a.slack) & (abs(s) * v1 * v1 <= abs(rate) / 8);  // (short_step)
-  const Pack qx = x + s * vx, qy = y + s * vy;
-  const Pack inv = 1 / sqrt(ux * ux + uy * uy);
-  const Pack rx = ux * inv, ry = uy * inv;
-  const Pack nx = sel(along, (qx - a.cx) / a.r, rx), ny = sel(along, (qy - a.cy) / a.r, ry);
-  const Mask focusing = a.sign > 0;
-  return {sel(along, qx, a.cx + a.r * rx), sel(along, qy, a.cy + a.r * ry), sel(focusing, nx, -nx), sel(focusing, ny, -ny)};
-}
-/// BasicSegmentWall::contact: (x, y) projected onto the segment (an end beyond it), the normal.
-LANES Contact segment_contact(const Wall& g, Pack x, Pack y) {
-  const Pack along = (x - g.ax) * g.dir_x + (y - g.ay) * g.dir_y, d = g.nx * (x - g.ax) + g.ny * (y - g.ay);
-  const Mask before = along <= 0, after = along >= 1;
-  return {sel(before, g.ax, sel(after, g.bx, x - g.nx * d)), sel(before, g.ay, sel(after, g.by, y - g.ny * d)), g.nx, g.ny};
 }
 
 /// The searches' lanes: the best hit so far (first_hit_in_windows' tau_best, best_wall, phase)
@@ -577,14 +554,16 @@ class Lanes {
       const auto [phase_hi, phase_lo] = reduce_phase(theta.hi, theta.lo, fast);
       made = found & (abs(h) <= 0.05) & fast;
       // advance: v = s.v + (F/mω)(sin θ − sin θ_s), x = s.x + u τ − (F/mω²)(cos θ − cos θ_s).
-      const Pack vx = q.v0x + q.amp_v_x * (sn - q.sin_phase), vy = q.v0y + q.amp_v_y * (sn - q.sin_phase);
-      const Pack x = (q.sx + q.ux * tau) - q.amp_x_x * (cs - q.cos_phase);
-      const Pack y = (q.sy + q.uy * tau) - q.amp_x_y * (cs - q.cos_phase);
+      const Pack vx = advanced_velocity(q.v0x, q.amp_v_x, sn, q.sin_phase);
+      const Pack vy = advanced_velocity(q.v0y, q.amp_v_y, sn, q.sin_phase);
+      const Pack x = advanced_position(q.sx, q.ux, tau, q.amp_x_x, cs, q.cos_phase);
+      const Pack y = advanced_position(q.sy, q.uy, tau, q.amp_x_y, cs, q.cos_phase);
       const Wall a = wall_of(best_wall_);
-      Contact c;
+      const PackLanes l;
+      ContactLanes<Pack> c;
       for_kinds(a, found, [&](const auto& kinds) LANES_LAMBDA {
-        c = kinds.by_kind([&]() LANES_LAMBDA { return arc_contact(a, x, y, vx, vy); },
-                          [&]() LANES_LAMBDA { return segment_contact(a, x, y); });
+        c = kinds.by_kind([&]() LANES_LAMBDA { return arc_contact(l, a.arc_lanes(), a.slack, x, y, vx, vy); },
+                          [&]() LANES_LAMBDA { return segment_contact<PackLanes>(a.segment_lanes(), a.bx, a.by, x, y); });
       });
       store(hits.t, t), store(hits.x, x), store(hits.y, y), store(hits.vx, vx), store(hits.vy, vy);
       store(hits.phase_hi, phase_hi), store(hits.phase_lo, phase_lo), store(hits.sin_phase, sn), store(hits.cos_phase, cs);
@@ -722,9 +701,10 @@ class Lanes {
     handed_back_ |= searching_ & ~at_start & ~fast;
     searching_ &= at_start | fast;
     th = sel(at_start, q.phase, th), sn = sel(at_start, q.sin_phase, sn), cs = sel(at_start, q.cos_phase, cs);
-    const Pack x = sel(at_start, q.sx, (q.g0x + q.ux * tau) - q.amp_x_x * cs);
-    const Pack y = sel(at_start, q.sy, (q.g0y + q.uy * tau) - q.amp_x_y * cs);
-    const Pack vx = sel(at_start, q.v0x, q.ux + q.amp_v_x * sn), vy = sel(at_start, q.v0y, q.uy + q.amp_v_y * sn);
+    const Pack x = sel(at_start, q.sx, quiver_position(q.g0x, q.ux, tau, q.amp_x_x, cs));
+    const Pack y = sel(at_start, q.sy, quiver_position(q.g0y, q.uy, tau, q.amp_x_y, cs));
+    const Pack vx = sel(at_start, q.v0x, quiver_velocity(q.ux, q.amp_v_x, sn));
+    const Pack vy = sel(at_start, q.v0y, quiver_velocity(q.uy, q.amp_v_y, sn));
     const Pack ax = q.accel_x * cs, ay = q.accel_y * cs;
     // SphereGap::taylor from the dot products of p = x − c; PlaneGap::taylor, n·(x − a), n·v, n·ẍ.
     const TaylorLanes<Pack> p = kinds.by_kind([&]() LANES_LAMBDA {
@@ -769,7 +749,8 @@ class Lanes {
     if (any(landed)) {
       const auto [sn_next, cs_next] = shifted<PackLanes>(SinCos<Pack>{sn, cs}, shift);
       const Mask in =
-          within_span(a, kinds, (q.g0x + q.ux * next) - q.amp_x_x * cs_next, (q.g0y + q.uy * next) - q.amp_x_y * cs_next);
+          within_span(a, kinds, quiver_position(q.g0x, q.ux, next, q.amp_x_x, cs_next),
+                      quiver_position(q.g0y, q.uy, next, q.amp_x_y, cs_next));
       never |= landed & ~in;
       root |= landed & in;
       found = sel(landed, next, found);

@@ -42,6 +42,44 @@ typename L::Num rounding_rate(const GuideLanes<typename L::Num>& g, const Truth&
   return L::select(creeping, g.speed, g.speed_bound);
 }
 
+/// The drive's motion, written for a number (one axis, a lane each) or a vector (`Vec`: any
+/// type with + and − and a product by a number `Num`, each component computed as a number
+/// would be), from the start's x_s, v_s, sin θ_s, cos θ_s and the oscillation's amplitudes
+/// F/(mω²) (`amp_x`) and F/(mω) (`amp_v`).
+/// The guide's velocity u = v_s − (F/mω) sin θ_s (guiding_velocity) and its start
+/// g0 = x_s + (F/mω²) cos θ_s (Quiver).
+template <class Vec, class Num>
+Vec guide_velocity(const Vec& v_s, const Vec& amp_v, const Num& sin_s) {
+  return v_s - amp_v * sin_s;
+}
+template <class Vec, class Num>
+Vec guide_start(const Vec& x_s, const Vec& amp_x, const Num& cos_s) {
+  return x_s + amp_x * cos_s;
+}
+/// The position and velocity τ after the start where θ has sine and cosine sin_th, cos_th: the
+/// guide less the oscillation, (g0 + u τ) − (F/mω²) cos θ, and u + (F/mω) sin θ
+/// (Quiver::position and motion).
+template <class Vec, class Num>
+Vec quiver_position(const Vec& g0, const Vec& u, const Num& tau, const Vec& amp_x, const Num& cos_th) {
+  return (g0 + u * tau) - amp_x * cos_th;
+}
+template <class Vec, class Num>
+Vec quiver_velocity(const Vec& u, const Vec& amp_v, const Num& sin_th) {
+  return u + amp_v * sin_th;
+}
+/// The same from the start's own position and velocity, as a hit's state is made
+/// (PeriodicDriveFlight::advance): (x_s + u τ) − (F/mω²)(cos θ − cos θ_s) and
+/// v_s + (F/mω)(sin θ − sin θ_s), whose differences of cosines and sines keep the start's
+/// position and velocity exactly at τ = 0.
+template <class Vec, class Num>
+Vec advanced_position(const Vec& x_s, const Vec& u, const Num& tau, const Vec& amp_x, const Num& cos_th, const Num& cos_s) {
+  return (x_s + u * tau) - amp_x * (cos_th - cos_s);
+}
+template <class Vec, class Num>
+Vec advanced_velocity(const Vec& v_s, const Vec& amp_v, const Num& sin_th, const Num& sin_s) {
+  return v_s + amp_v * (sin_th - sin_s);
+}
+
 /// A sphere (in 2-D a circle) of centre c and radius r, seen from the guide: b = q0·u, cc = |q0|²
 /// and |q0|₁|u|₁ (q0 = g0 − c), the numbers of |q0 + u τ|² = cc + 2bτ + uu τ²; sign +1 when the
 /// region is inside (focusing), −1 outside; the rounding level of f, tol0 + tol1 τ.

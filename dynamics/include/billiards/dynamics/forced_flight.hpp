@@ -59,7 +59,7 @@ std::pair<V, V> oscillation_segment(const State& s, const V& u, const V& amp_x, 
 template <class Flight, class State>
 auto guiding_velocity(const Flight& f, const State& s) {
   using V = std::decay_t<decltype(s.v)>;
-  return V(s.v - drive_amplitudes(f.accel, f.omega).second * s.sin_phase);
+  return scan::guide_velocity(V(s.v), drive_amplitudes(f.accel, f.omega).second, s.sin_phase);
 }
 
 
@@ -105,7 +105,7 @@ struct Quiver {
     std::tie(amp_x, amp_v) = drive_amplitudes(f.accel, f.omega);
     inv_omega = 1 / f.omega;
     accel_norm = f.accel.norm();
-    g0 = st.x + amp_x * st.cos_phase;
+    g0 = scan::guide_start(st.x, amp_x, st.cos_phase);
     delta = accel_norm * inv_omega * inv_omega;
     const auto g = scan::guide_lanes<L>(u.squaredNorm(), accel_norm, f.omega, inv_omega, delta);
     uu = g.uu, inv_uu = g.inv_uu, speed = g.speed, wobble = g.wobble, speed_bound = g.speed_bound;
@@ -143,14 +143,14 @@ struct Quiver {
     if (tau == 0) return {s.x, v0, flight.accel * s.cos_phase, Real(s.phase), s.sin_phase, s.cos_phase};
     const Real th = phase_at(tau);
     const auto [sn, c] = sin_cos(th);
-    return {position(tau, c), u + amp_v * sn, flight.accel * c, th, sn, c};
+    return {position(tau, c), scan::quiver_velocity(u, amp_v, sn), flight.accel * c, th, sn, c};
   }
   /// The drive's phase θ τ after the start, as `motion` computes it.
   Real phase_at(const Real& tau) const {
     return creeping ? Real(reduce_phase(advance_phase(s.phase, flight.omega, tau))) : Real(Real(s.phase) + flight.omega * tau);
   }
   /// The position τ after the start, where cos θ = cos_th.
-  V position(const Real& tau, const Real& cos_th) const { return g0 + u * tau - amp_x * cos_th; }
+  V position(const Real& tau, const Real& cos_th) const { return scan::quiver_position(g0, u, tau, amp_x, cos_th); }
   /// The position x at τ and the mark there from the mark of a sample at a nearby time (the
   /// drive's phase shifted by ω Δτ: PhaseSample::shifted); false when τ is too far from it.
   bool shifted_to(const Mark& from, const Real& tau, V& x, Mark& at) const {

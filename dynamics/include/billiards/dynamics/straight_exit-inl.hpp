@@ -70,6 +70,76 @@ template <class L, class FW>
   return l.both(along >= L::neg(w.span_tol), along <= L::splat(1) + w.span_tol);
 }
 
+/// A hit's point on the wall and the region's outward unit normal there (the walls' `contact`).
+template <class Num>
+struct ContactLanes {
+  Num x, y, nx, ny;
+};
+
+/// Is a Newton step s (in time) along a flight onto a curve short: at most `slack` long, and at
+/// most an eighth of the chord the flight's line cuts from the curve, whose time is
+/// |rate|/|w|² (rate = d|u|²/ds, u and w the position and velocity in the curve's own units, a
+/// circle's about its centre, v the velocity in the table's)?
+/// At grazing incidence the step from a point off the curve by rounding runs along the
+/// tangent, as far as the chord's other end; the point is projected across the curve there.
+/// (The arcs' and the elliptic arcs' `contact`.)
+template <class L>
+[[gnu::always_inline]] inline typename L::Truth short_step(const L& l, const typename L::Num& s, const typename L::Num& rate,
+                                                             const typename L::Num& vx, const typename L::Num& vy,
+                                                             const typename L::Num& wx, const typename L::Num& wy,
+                                                             const typename L::Num& slack) {
+  using Num = typename L::Num;
+  const Num w1 = L::abs(wx) + L::abs(wy);  // (|w|₁² ≥ |w|²: no square root)
+  return l.both(L::abs(s) * (L::abs(vx) + L::abs(vy)) <= slack, L::abs(s) * w1 * w1 <= L::abs(rate) / L::splat(8));
+}
+
+/// The point of the arc's circle on the ray from its centre through (px, py), and the region's
+/// outward unit normal there: one square root and one division give both.
+/// BasicArcWall::radial_contact.
+template <class L, class FW, class WT>
+[[gnu::always_inline]] inline ContactLanes<typename L::Num> radial_contact(const ArcLanes<FW, WT>& w, const typename L::Num& px,
+                                                                           const typename L::Num& py) {
+  using Num = typename L::Num;
+  const Num ux = px - w.cx, uy = py - w.cy;
+  const Num inv = L::splat(1) / L::sqrt(ux * ux + uy * uy);
+  const Num nx = ux * inv, ny = uy * inv;
+  return {w.cx + w.r * nx, w.cy + w.r * ny, L::select(w.focusing, nx, L::neg(nx)), L::select(w.focusing, ny, L::neg(ny))};
+}
+
+/// Where the flight through the hit point (px, py) with velocity (vx, vy) meets the arc's
+/// circle, and the outward normal there: one Newton step of |u + s v|² = r² (u = p − c) along
+/// the flight where it is short, else the radial projection.  BasicArcWall::contact (which
+/// says why).
+template <class L, class FW, class WT>
+[[gnu::always_inline]] inline ContactLanes<typename L::Num> arc_contact(const L& l, const ArcLanes<FW, WT>& w,
+                                                                        const typename L::Num& slack, const typename L::Num& px,
+                                                                        const typename L::Num& py, const typename L::Num& vx,
+                                                                        const typename L::Num& vy) {
+  using Num = typename L::Num;
+  const Num ux = px - w.cx, uy = py - w.cy;
+  const Num rate = L::splat(2) * (ux * vx + uy * vy), s = L::neg((ux * ux - w.r2) + uy * uy) / rate;
+  return l.choose(short_step(l, s, rate, vx, vy, vx, vy, slack), [&]() __attribute__((always_inline)) {
+    const Num qx = px + s * vx, qy = py + s * vy;
+    const Num nx = (qx - w.cx) / w.r, ny = (qy - w.cy) / w.r;
+    return ContactLanes<Num>{qx, qy, L::select(w.focusing, nx, L::neg(nx)), L::select(w.focusing, ny, L::neg(ny))};
+  }, [&]() __attribute__((always_inline)) { return radial_contact<L>(w, px, py); });
+}
+
+/// The point of the segment nearest (px, py) (an end where its projection lies beyond it; the
+/// normal's foot, not a + s (b − a), which would round along the wall too), and the normal.
+/// A hit point computed near a corner may lie past the end by up to the span slack, beyond the
+/// neighbouring wall; projected, it never does.  BasicSegmentWall::contact.
+template <class L, class FW>
+[[gnu::always_inline]] inline ContactLanes<typename L::Num> segment_contact(const SegmentLanes<FW>& w, const typename L::Num& bx,
+                                                                            const typename L::Num& by, const typename L::Num& px,
+                                                                            const typename L::Num& py) {
+  using Num = typename L::Num;
+  const Num along = (px - w.ax) * w.dir_x + (py - w.ay) * w.dir_y, d = w.nx * (px - w.ax) + w.ny * (py - w.ay);
+  const auto before = along <= L::splat(0), after = along >= L::splat(1);
+  return {L::select(before, Num(w.ax), L::select(after, bx, Num(px - w.nx * d))),
+          L::select(before, Num(w.ay), L::select(after, by, Num(py - w.ny * d))), w.nx, w.ny};
+}
+
 /// The time the straight flight from s leaves the region through the arc w (before t_end),
 /// else `never`.  BasicFreeFlight::exit_time (free_flight.hpp) for every number type.
 template <class L, class FR, class FW, class WT>

@@ -204,17 +204,11 @@ struct SphereGap {
 template <class Real>
 inline const Real span_slack_ulps = 256 * std::numeric_limits<Real>::epsilon();
 
-/// Is a Newton step s (in time) along a flight onto a curve short: at most `slack` long, and at
-/// most an eighth of the chord the flight's line cuts from the curve, whose time is
-/// |rate|/|w|² (rate = d|u|²/ds, u and w the position and velocity in the curve's own units, a
-/// circle's about its centre, v the velocity in the table's)?
-/// At grazing incidence the step from a point off the curve by rounding runs along the
-/// tangent, as far as the chord's other end; the point is projected across the curve there.
-template <class Real, class V>
-bool short_step(const Real& s, const Real& rate, const V& v, const V& w, const Real& slack) {
-  using std::abs;
-  const Real w1 = abs(w.x()) + abs(w.y());  // (|w|₁² ≥ |w|²: no square root)
-  return abs(s) * (abs(v.x()) + abs(v.y())) <= slack && abs(s) * w1 * w1 <= abs(rate) / 8;
+/// A contact point and normal in lanes of one number (straight_exit-inl.hpp's), as the walls
+/// return them.
+template <class Real>
+std::pair<Vec2T<Real>, Vec2T<Real>> pair_of(const ContactLanes<Real>& c) {
+  return {{c.x, c.y}, {c.nx, c.ny}};
 }
 
 /// `gap_sample` of a wall whose gap is ±(ρ − R), ρ the distance from its centre in units that
@@ -260,18 +254,7 @@ struct BasicSegmentWall {
     bound_radius = d.norm() / 2 + slack;
   }
   /// Is p (on the supporting line, to rounding) within the segment, ends included?
-  bool within_span(const V& p) const {
-    const Real s = (p - a).dot(dir);
-    return s >= -span_tol && s <= 1 + span_tol;
-  }
-  /// The point of the segment nearest p: a hit point computed near a corner may lie past the
-  /// end by up to the span slack, beyond the neighbouring wall; projected, it never does.
-  V project(const V& p) const {
-    const Real s = (p - a).dot(dir);
-    if (s <= 0) return a;
-    if (s >= 1) return b;
-    return p - normal * normal.dot(p - a);  // (not a + s (b − a), which rounds along the wall too)
-  }
+  bool within_span(const V& p) const { return dynamics::within_span(ScalarLanes<Real>{}, segment_lanes(*this), p.x(), p.y()); }
   /// Distance from p to the segment.
   Real distance(const V& p) const { return point_segment_distance(p, a, b); }
   /// Can p be within `tol` of the segment?  Its line's distance bounds the segment's from below
@@ -306,7 +289,10 @@ struct BasicSegmentWall {
   }
   Real curvature_at(const V&) const { return 0; }
   V normal_at(const V&) const { return normal; }
-  std::pair<V, V> contact(const V& p, const V&) const { return {project(p), normal}; }
+  /// The point of the segment nearest p and the normal (segment_contact, which says why).
+  std::pair<V, V> contact(const V& p, const V&) const {
+    return pair_of(segment_contact<ScalarLanes<Real>>(segment_lanes(*this), b.x(), b.y(), p.x(), p.y()));
+  }
   /// Distance from the segment [p, q] to this one (to rounding): zero when they cross, else
   /// the least distance from an end of one to the other.
   Real distance(const V& p, const V& q) const {
@@ -353,14 +339,7 @@ struct BasicArcWall {
     near = 2 * radius * slack;
   }
   /// Is p (on the circle, to rounding) within the arc, ends included?
-  bool within_span(const V& p) const {
-    if (full) return true;
-    const V u = p - center;
-    const Real tol = span_tol;
-    if (ccw_extent <= geometry::pi) return cross(from, u) >= -tol && cross(u, to) >= -tol;
-    // More than a half circle: inside unless strictly within the complementary arc (< π).
-    return !(cross(to, u) > tol && cross(u, from) > tol);
-  }
+  bool within_span(const V& p) const { return dynamics::within_span(ScalarLanes<Real>{}, arc_lanes(*this), p.x(), p.y()); }
   /// Where the flight through the hit point p with velocity v meets the circle, and the
   /// region's outward unit normal there.  Hit points computed along a chord are off the circle
   /// by rounding; left there, a whispering-gallery orbit (10⁴ bounces at a grazing angle)
@@ -372,20 +351,14 @@ struct BasicArcWall {
   /// angular momentum, −0.1 ε per bounce at steep incidence.  Where the step is not short
   /// (`short_step`: grazing incidence, or a point off the circle by more than rounding), the
   /// radial projection.
+  /// (arc_contact, straight_exit-inl.hpp, written once for this and the lock-step search.)
   std::pair<V, V> contact(const V& p, const V& v) const {
-    const V u = p - center;
-    const Real rate = 2 * u.dot(v), s = -((u.x() * u.x() - radius2) + u.y() * u.y()) / rate;
-    if (!short_step(s, rate, v, v, slack)) return radial_contact(p);
-    const V q = p + s * v, n = (q - center) / radius;
-    return {q, focusing ? n : V(-n)};
+    return pair_of(arc_contact(ScalarLanes<Real>{}, arc_lanes(*this), slack, p.x(), p.y(), v.x(), v.y()));
   }
   /// The point of the circle nearest p, and the region's outward unit normal there.  One
   /// square root and one division give both (the normal alone, (p − c)/r, took two divisions).
   std::pair<V, V> radial_contact(const V& p) const {
-    using std::sqrt;
-    const V u = p - center;
-    const V n = u * Real(1 / sqrt(u.squaredNorm()));
-    return {center + radius * n, focusing ? V(n) : V(-n)};
+    return pair_of(dynamics::radial_contact<ScalarLanes<Real>>(arc_lanes(*this), p.x(), p.y()));
   }
   /// Distance from p to the arc: to the circle where p's radial projection is within the span,
   /// else to the nearer end.
@@ -538,7 +511,7 @@ struct BasicEllipticArcWall {
   std::pair<V, V> contact(const V& p, const V& v) const {
     const V u = to_unit(p), w = map * v;
     const Real rate = 2 * u.dot(w), s = -((u.x() * u.x() - 1) + u.y() * u.y()) / rate;
-    if (!short_step(s, rate, v, w, slack)) return radial_contact(p);
+    if (!short_step(ScalarLanes<Real>{}, s, rate, v.x(), v.y(), w.x(), w.y(), slack)) return radial_contact(p);
     const V q = p + s * v;
     return {q, normal_through(to_unit(q))};
   }
