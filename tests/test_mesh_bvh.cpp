@@ -116,6 +116,32 @@ TEST_CASE("the BVH grown by a tube finds the first hit of every triangle: helice
   }
 }
 
+TEST_CASE("a helix with no horizon (billiard trajectory without --time) finds its first hit in a mesh") {
+  // A helix wide beside the mesh crosses a triangle's plane again every turn, outside the
+  // triangle's span: the search asks each triangle only as far as it walks, not to t = ∞ (a scan
+  // that never ended, thrown as "did not converge").  The first hit is every triangle's first
+  // before s.t + 20, which each helix here reaches sooner.
+  const auto shape = mesh_shape("bumpy-100k");
+  const Table3 table(shape.region);
+  ParticleRng rng(9, 0);
+  int compared = 0;
+  for (const double rc : {10.0, 0.1}) {
+    const MagneticFlight3 flight{random_direction(rng) / rc};
+    State3 s = sample_microcanonical(table, 1.0, rng);
+    for (int k = 0; k < 6; ++k) {
+      const auto hit = table.collision(flight, s, never);
+      const Hit3 scan = every_triangle(table, flight, s, s.t + 20);
+      REQUIRE(scan.found());
+      REQUIRE(hit.found());
+      CHECK(hit.t == scan.t);
+      if (hit.wall != scan.wall) CHECK(flight.exit_time(s, table.triangles()[hit.wall.index], s.t + 20) == scan.t);
+      ++compared;
+      bounce(flight, s, hit);
+    }
+  }
+  CHECK(compared == 12);
+}
+
 TEST_CASE("a mesh's triangles are numbered in the mesh's order (Table3::piece_of), whatever the BVH's order") {
   const auto shape = mesh_shape("bumpy-100k");
   const Table3 table(shape.region);

@@ -55,6 +55,27 @@ void ask_leaf(const std::vector<TriangleWall>& triangles, int first, int count, 
   }
 }
 
+/// Starts fetching what an exit test reads of a leaf's triangles [first, first + count): the
+/// first two cache lines of each (TriangleWall).
+void fetch_leaf(const std::vector<TriangleWall>& triangles, int first, int count) {
+  for (int i = first; i < first + count; ++i) {
+    const char* t = reinterpret_cast<const char*>(&triangles[i]);
+    __builtin_prefetch(t), __builtin_prefetch(t + 64);
+  }
+}
+
+/// How long until a helix within tube.pad of its axis (origin + dir τ, dir ≠ 0) is certainly
+/// outside the box [lo, hi]: its axis beyond a face by more than the pad (with a margin for
+/// the quotient's rounding).
+double time_to_leave(const Tube3& tube, const Vec3& lo, const Vec3& hi) {
+  double tau = never;
+  for (int k = 0; k < 3; ++k) {
+    const double d = tube.dir[k], beyond = d > 0 ? hi[k] + tube.pad - tube.origin[k] : lo[k] - tube.pad - tube.origin[k];
+    if (d != 0) tau = std::min(tau, std::max(0.0, beyond / d));
+  }
+  return tau * (1 + 1e-9);
+}
+
 }  // namespace
 
 /// Walks the BVH along the ray `origin + τ dir` (τ after `t0`), boxes grown by `pad`, and
@@ -62,10 +83,13 @@ void ask_leaf(const std::vector<TriangleWall>& triangles, int first, int count, 
 template <class Exit>
 void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best,
                               Exit exit) const {
-  bvh_.walk(origin, dir, pad, best.t - t0, [&](int first, int count) {
-    ask_leaf(triangles(), first, count, best, exit);
-    return best.t - t0;
-  });
+  bvh_.walk(
+      origin, dir, pad, best.t - t0,
+      [&](int first, int count) {
+        ask_leaf(triangles(), first, count, best, exit);
+        return best.t - t0;
+      },
+      [&](int first, int count) { fetch_leaf(triangles(), first, count); });
 }
 
 /// The triangles a helix (Gyration) may cross, an arc at a time in time order: an arc of
@@ -75,8 +99,12 @@ void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, d
 /// meets, and the chord's parameter is the time: a hit found ends the walk of the arcs after
 /// it.  An arc is an eighth of a turn, or an eighth of the table's diagonal long where that is
 /// shorter (a wide helix): the walk visits the triangles near the path, not all those within
-/// r_c of the guiding axis, and asks each leaf once.  After 64 arcs without a hit (a slow drift
-/// along the field) the rest goes by the axis' tube.
+/// r_c of the guiding axis, and asks each leaf once, for a crossing before the arcs' end.  After
+/// 64 arcs without a hit (a slow drift along the field) the rest goes by the axis' tube.  No
+/// triangle is asked beyond the time the helix has certainly left the table's box (its first
+/// crossing comes before; without drift, after a turn the orbit repeats itself): asked to
+/// t_end = ∞ (`billiard trajectory` without `--time`), a triangle whose plane the helix meets
+/// every turn outside its span would be scanned without end.
 template <class Helix, class Exit>
 void Table3::search_triangles_along_helix(const Helix& helix, double t0, Hit3& best, Exit exit) const {
   constexpr int max_arcs = 64;
@@ -84,6 +112,9 @@ void Table3::search_triangles_along_helix(const Helix& helix, double t0, Hit3& b
   const auto [a0, v0] = helix.at(0);
   const double h = std::min(helix.period() / 8, (hi_ - lo_).norm() / (8 * v0.norm())), angle = helix.k * h;
   const double bow = helix.radius * angle * angle / 8 * (1 + 1e-9), rounding = 2 * (tube.pad - helix.radius);
+  const double t_out = t0 + (tube.dir == Vec3::Zero() ? 1.01 * helix.period() : time_to_leave(tube, lo_, hi_));
+  const double arcs_end = std::min(t0 + max_arcs * h, t_out);
+  const auto exit_before_arcs_end = [&](const TriangleWall& w, double t) { return exit(w, std::min(t, arcs_end)); };
   // The leaves already asked (by their first triangle): asked again, a triangle cannot cross
   // before its first crossing found then, the bound best.t having only fallen since.
   constexpr int max_seen = 64;
@@ -91,18 +122,23 @@ void Table3::search_triangles_along_helix(const Helix& helix, double t0, Hit3& b
   Vec3 a = a0;
   for (int j = 0; j < max_arcs; ++j) {
     const double ta = t0 + j * h;  // the arc [ta, ta + h], as the absolute time
-    if (!(ta < best.t)) return;
+    if (!(ta < best.t) || !(ta < arcs_end)) return;  // (arcs_end < t0 + j h: it is t_out)
     const Vec3 b = helix.at((j + 1) * h).first;
     const double pad = bow + rounding + 16 * scan::eps<double> * (a.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff());
-    bvh_.walk(a, (b - a) / h, pad, std::min(h, best.t - ta), [&](int first, int count) {
-      if (std::find(seen, seen + seen_count, first) != seen + seen_count) return std::min(h, best.t - ta);
-      if (seen_count < max_seen) seen[seen_count++] = first;
-      ask_leaf(triangles(), first, count, best, exit);
-      return std::min(h, best.t - ta);
-    });
+    bvh_.walk(
+        a, (b - a) / h, pad, std::min(h, best.t - ta),
+        [&](int first, int count) {
+          if (std::find(seen, seen + seen_count, first) != seen + seen_count) return std::min(h, best.t - ta);
+          if (seen_count < max_seen) seen[seen_count++] = first;
+          ask_leaf(triangles(), first, count, best, exit_before_arcs_end);
+          return std::min(h, best.t - ta);
+        },
+        [&](int first, int count) { fetch_leaf(triangles(), first, count); });
     a = b;
   }
-  if (t0 + max_arcs * h < best.t) search_triangles(tube.origin, tube.dir, tube.pad, t0, best, exit);
+  if (arcs_end < std::min(best.t, t_out))
+    search_triangles(tube.origin, tube.dir, tube.pad, t0, best,
+                     [&](const TriangleWall& w, double t) { return exit(w, std::min(t, t_out)); });
 }
 
 namespace {

@@ -38,9 +38,10 @@ class Bvh {
 
   /// Walks the leaves whose boxes, grown by `pad`, the ray origin + τ dir enters for τ in
   /// [0, tau_max], nearest box first: `tau_max = leaf(first, count)` for each, so that a leaf
-  /// may shrink the bound of the rest.
-  template <class Leaf>
-  void walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf) const;
+  /// may shrink the bound of the rest.  `fetch(first, count)` is told of a leaf as soon as its
+  /// box is entered, so that its triangles may be fetched from memory meanwhile.
+  template <class Leaf, class Fetch>
+  void walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const;
 
  private:
   /// Binary nodes of the build, before they are gathered into nodes of `width`.
@@ -94,8 +95,12 @@ struct BvhRay {
         out = tb < out ? tb : out;
       }
       const auto entered = in <= out;
-      t_in[i] = in[0], t_in[i + 1] = in[1];
+      __builtin_memcpy(t_in + i, &in, sizeof in);
+#ifdef __SSE2__
+      mask |= unsigned(__builtin_ia32_movmskpd(DoublePair(entered))) << i;  // (the sign bits)
+#else
       mask |= unsigned(entered[0] & 1) << i | unsigned(entered[1] & 1) << (i + 1);
+#endif
     }
     return mask;
   }
@@ -103,8 +108,8 @@ struct BvhRay {
 
 }  // namespace detail
 
-template <class Leaf>
-void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf) const {
+template <class Leaf, class Fetch>
+void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const {
   if (nodes_.empty()) return;
   const detail::BvhRay ray(origin, dir, pad);
   struct Entry {
@@ -112,28 +117,35 @@ void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, 
     double t_in;  // where the ray enters its box
   };
   Entry stack[stack_size];
-  int top = 0;
-  stack[top++] = {0, 0.0};
-  while (top > 0) {
-    const Entry e = stack[--top];
-    if (e.t_in > tau_max) continue;  // a nearer hit was found since it was pushed
-    if (e.child < 0) {
-      const int code = ~e.child;
+  int top = 0, child = 0;  // the node or leaf searched next
+  for (;;) {
+    if (child < 0) {
+      const int code = ~child;
       tau_max = leaf(code / max_leaf, code % max_leaf + 1);
-      continue;
+    } else {
+      const Node& node = nodes_[child];
+      double t_in[width];
+      // Push the children entered, farthest first (insertion by t_in), and search the nearest
+      // next, so that the bound shrinks early; the others are fetched meanwhile.
+      const int bottom = top;
+      for (unsigned mask = ray.enter(node, tau_max, t_in); mask; mask &= mask - 1) {
+        const int i = std::countr_zero(mask);
+        if (const int c = node.child[i]; c >= 0) prefetch(nodes_[c]);
+        else fetch(~c / max_leaf, ~c % max_leaf + 1);
+        int j = top++;
+        for (; j > bottom && stack[j - 1].t_in < t_in[i]; --j) stack[j] = stack[j - 1];
+        stack[j] = {node.child[i], t_in[i]};
+      }
+      if (top > bottom) {  // (entered, so t_in ≤ tau_max)
+        child = stack[--top].child;
+        continue;
+      }
     }
-    const Node& node = nodes_[e.child];
-    double t_in[width];
-    // Push the children entered, farthest first (insertion by t_in), so that the nearest is
-    // searched first and the bound shrinks early; the inner ones are fetched meanwhile.
-    const int bottom = top;
-    for (unsigned mask = ray.enter(node, tau_max, t_in); mask; mask &= mask - 1) {
-      const int i = std::countr_zero(mask);
-      if (node.child[i] >= 0) prefetch(nodes_[node.child[i]]);
-      int j = top++;
-      for (; j > bottom && stack[j - 1].t_in < t_in[i]; --j) stack[j] = stack[j - 1];
-      stack[j] = {node.child[i], t_in[i]};
-    }
+    // The nearest entry left that no hit found since it was pushed has ruled out.
+    do {
+      if (top == 0) return;
+    } while (stack[--top].t_in > tau_max);
+    child = stack[top].child;
   }
 }
 

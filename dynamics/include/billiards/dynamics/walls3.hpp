@@ -72,12 +72,15 @@ struct Ray {
   Ray(const Vec3& x, const Vec3& v);
 };
 
-struct TriangleWall {
+/// A straight flight's exit test reads p, normal, slack and span_slack: they come first, in
+/// the first two cache lines of a wall aligned to them (a BVH leaf's triangles are fetched from
+/// memory a line at a time).
+struct alignas(64) TriangleWall {
   std::array<Vec3, 3> p;  // counter-clockwise seen from outside
   Vec3 normal;            // outward unit normal
-  std::array<Vec3, 3> edge_normal;  // in-plane unit normals pointing out of the span
   double slack;
   double span_slack;  // `slack` in barycentric units
+  std::array<Vec3, 3> edge_normal;  // in-plane unit normals pointing out of the span
 
   TriangleWall(const Vec3& a, const Vec3& b, const Vec3& c, double slack);
   /// Is x (on the plane, to rounding) within `slack` of the closed triangle?
