@@ -141,7 +141,7 @@ void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, 
         continue;
       }
     }
-    // The nearest entry left that no hit found since it was pushed has ruled out.
+    // Next, the nearest entry left that is not beyond a hit found since it was pushed.
     do {
       if (top == 0) return;
     } while (stack[--top].t_in > tau_max);
