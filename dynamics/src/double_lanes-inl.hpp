@@ -78,6 +78,10 @@ inline ArcLanes<Num, bool> lanes_of(const free_lanes::Arc& a) {
           Lanes::splat(a.near),   Lanes::splat(a.span_tol), Lanes::splat(a.from_x), Lanes::splat(a.from_y),
           Lanes::splat(a.to_x),   Lanes::splat(a.to_y), a.focusing, a.full, a.half};
 }
+inline EllipseMapLanes<Num> lanes_of(const free_lanes::Ellipse& e) {
+  return {Lanes::splat(e.cx),  Lanes::splat(e.cy),  Lanes::splat(e.l00),
+          Lanes::splat(e.l01), Lanes::splat(e.l10), Lanes::splat(e.l11)};
+}
 
 /// Sets the lanes of `v` to `value` where `where`.
 inline void assign_where(Truth where, std::int64_t value, Index& v) {

@@ -5,7 +5,8 @@
 // vector of doubles, one flight per lane: the same operations in the same order, each rounded
 // once (no fused multiply-add: -ffp-contract=off), so each lane's time is the scalar search's,
 // bit for bit; and the walls are tried in the scalar search's order, each kept only when it is
-// hit strictly earlier.
+// hit strictly earlier.  An elliptic arc is its unit arc, hit by the flight seen through the
+// ellipse's map (mapped_ray), as the scalar search sees it.
 
 #include "simd_targets.hpp"  // (first: the targets compiled)
 #undef HWY_TARGET_INCLUDE
@@ -55,6 +56,10 @@ void first_hits_of(const Walls& walls, const Rays& rays, int first, Hits& hits) 
   for (int i = 0; i < walls.segment_count; ++i)
     best.keep(straight_exit_time(lanes, s, lanes_of(walls.segments[i]), t_end), 0, i);
   for (int i = 0; i < walls.arc_count; ++i) best.keep(straight_exit_time(lanes, s, lanes_of(walls.arcs[i]), t_end), 1, i);
+  for (int i = 0; i < walls.ellipse_count; ++i) {
+    const Ellipse& e = walls.ellipses[i];
+    best.keep(straight_exit_time(lanes, mapped_ray<Lanes>(s, lanes_of(e)), lanes_of(e.unit), t_end), 2, i);
+  }
   hn::Store(best.t, d, hits.t + first);
   hn::Store(best.kind, di, hits.kind + first);
   hn::Store(best.index, di, hits.index + first);

@@ -10,8 +10,18 @@ free_lanes::Kernel free_lanes::chosen_kernel() {
 }
 
 bool free_lanes::fits(const Table& table) {
-  return table.segments().size() <= std::size_t(max_walls) && table.arcs().size() <= std::size_t(max_walls);
+  return table.segments().size() <= std::size_t(max_walls) && table.arcs().size() <= std::size_t(max_walls) &&
+         table.elliptic_arcs().size() <= std::size_t(max_walls);
 }
+
+namespace {
+
+free_lanes::Arc arc_of(const ArcWall& w) {
+  const auto a = arc_lanes(w);
+  return {a.cx, a.cy, a.r, a.r2, a.near, a.span_tol, a.from_x, a.from_y, a.to_x, a.to_y, a.focusing, a.full, a.half};
+}
+
+}  // namespace
 
 free_lanes::Walls free_lanes::walls_of(const Table& table) {
   const auto& segments = table.segments();
@@ -23,10 +33,12 @@ free_lanes::Walls free_lanes::walls_of(const Table& table) {
     walls.segments[i] = {g.ax, g.ay, g.nx, g.ny, g.dir_x, g.dir_y, g.slack, g.span_tol};
   }
   walls.arc_count = int(arcs.size());
-  for (std::size_t i = 0; i < arcs.size(); ++i) {
-    const auto a = arc_lanes(arcs[i]);
-    walls.arcs[i] = {a.cx,     a.cy,   a.r,    a.r2,   a.near,     a.span_tol, a.from_x,
-                     a.from_y, a.to_x, a.to_y, a.focusing, a.full, a.half};
+  for (std::size_t i = 0; i < arcs.size(); ++i) walls.arcs[i] = arc_of(arcs[i]);
+  const auto& ellipses = table.elliptic_arcs();
+  walls.ellipse_count = int(ellipses.size());
+  for (std::size_t i = 0; i < ellipses.size(); ++i) {
+    const auto m = ellipse_map_lanes(ellipses[i]);
+    walls.ellipses[i] = {m.cx, m.cy, m.l00, m.l01, m.l10, m.l11, arc_of(ellipses[i].unit)};
   }
   return walls;
 }
@@ -53,11 +65,10 @@ void FreeLockstepTable::collisions(const State* const* states, const double* t_e
       hit = collision(*table_, *flight_, s, t_end[i]);
       continue;
     }
-    // As `collision` makes the hit: the elliptic arcs after the lanes' segments and arcs.
+    // As `collision` makes the hit.
     hit.t = out.t[i];
     hit.wall = out.kind[i] < 0 ? WallId{} : WallId{int(out.kind[i]), int(out.index[i])};
     hit.midpoint_inside = false;
-    detail::try_walls(table_->elliptic_arcs(), wall_kind::elliptic_arc, detail::WallByWall<FreeFlight>{*flight_, s}, hit);
     if (!hit.found()) continue;
     hit.state = flight_->advance(s, hit.t);
     std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x, hit.state.v);

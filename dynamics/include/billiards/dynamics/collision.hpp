@@ -24,7 +24,8 @@ struct WallByWall {
   const typename Flight::State& s;
   template <class Wall>
   typename Flight::Scalar exit_time(const Wall& w, const typename Flight::Scalar& t_end) const {
-    if constexpr (std::is_same_v<Wall, BasicEllipticArcWall<typename Flight::Scalar>> && affine_covariant<Flight>)
+    if constexpr (std::is_same_v<Wall, BasicEllipticArcWall<typename Flight::Scalar>> && affine_covariant<Flight> &&
+                  !is_straight<Flight>)  // (straight flights: the closed form of free_flight.hpp)
       return elliptic_exit_time(flight, s, w, t_end);
     else
       return flight.exit_time(s, w, t_end);

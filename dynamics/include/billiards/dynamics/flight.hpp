@@ -87,6 +87,8 @@ struct BasicFreeFlight {
   /// The closed forms (free_flight.hpp, always inlined: the hot loop of free ensembles).
   [[gnu::always_inline]] Real exit_time(const State& s, const BasicSegmentWall<Real>& w, const Real& t_end) const requires(D == 2);
   [[gnu::always_inline]] Real exit_time(const State& s, const BasicArcWall<Real>& w, const Real& t_end) const requires(D == 2);
+  [[gnu::always_inline]] Real exit_time(const State& s, const BasicEllipticArcWall<Real>& w, const Real& t_end) const
+    requires(D == 2);
   /// Through a wall kind with no closed form here: the scan of its gap along the line.
   template <class Wall>
   Real exit_time(const State& s, const Wall& w, const Real& t_end, Scanned = {}) const requires(D == 2) {

@@ -34,4 +34,13 @@ inline Real BasicFreeFlight<Real, Dim>::exit_time(const State& s, const BasicArc
   return straight_exit_time(scalar, ray_lanes(s), arc_lanes(w), t_end);
 }
 
+/// Through an elliptic arc: the mapped flight's exit through the arc's unit arc.
+template <class Real, int Dim>
+inline Real BasicFreeFlight<Real, Dim>::exit_time(const State& s, const BasicEllipticArcWall<Real>& w,
+                                                  const Real& t_end) const requires(Dim == 2) {
+  ScalarLanes<Real> scalar;
+  return straight_exit_time(scalar, mapped_ray<ScalarLanes<Real>>(ray_lanes(s), ellipse_map_lanes(w)), arc_lanes(w.unit),
+                            t_end);
+}
+
 }  // namespace billiards::dynamics

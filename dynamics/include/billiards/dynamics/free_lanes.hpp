@@ -21,11 +21,18 @@ struct Arc {
   double cx, cy, r, r2, near, span_tol, from_x, from_y, to_x, to_y;
   bool focusing, full, half;
 };
-/// The segments and arcs of a table.
+/// An elliptic arc wall (BasicEllipticArcWall's fields): the map u = L (x − c) and the unit
+/// arc it takes the wall to.
+struct Ellipse {
+  double cx, cy, l00, l01, l10, l11;
+  Arc unit;
+};
+/// The segments, arcs and elliptic arcs of a table.
 struct Walls {
   Segment segments[max_walls];
   Arc arcs[max_walls];
-  int segment_count = 0, arc_count = 0;
+  Ellipse ellipses[max_walls];
+  int segment_count = 0, arc_count = 0, ellipse_count = 0;
 };
 
 /// The flights, lane by lane: the state (position, velocity, time, |v|²) and horizon.
@@ -34,8 +41,8 @@ struct alignas(64) Rays {
 };
 
 /// What the search found, lane by lane: the first wall's time (t_end: none), kind
-/// (wall_kind::segment or arc; −1: none) and index; or `handed_back`: a circle discriminant the
-/// filter could not sign, for the scalar search to decide exactly.
+/// (wall_kind::segment, arc or elliptic_arc; −1: none) and index; or `handed_back`: a circle
+/// discriminant the filter could not sign, for the scalar search to decide exactly.
 struct alignas(64) Hits {
   double t[lanes];
   std::int64_t kind[lanes], index[lanes];

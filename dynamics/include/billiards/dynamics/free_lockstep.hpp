@@ -1,11 +1,11 @@
 // Straight flights searched in lock step: the next collisions of several particles at once, one
 // particle per SIMD lane (internal to dynamics: the ensembles of free flights use it).
 //
-// The kernel (src/free_lanes_kernel.cpp) tries the segments and arcs in the scalar search's
-// order with straight_exit-inl.hpp's exit times, the scalar search's own source, compiled for
-// each SIMD target by Google Highway; so the collisions, and the trajectories, are the scalar
-// search's, bit for bit.  Elliptic arcs are then tried one particle at a time, and a particle
-// whose circle discriminant the filter cannot sign goes back to the scalar search.
+// The kernel (src/free_lanes_kernel.cpp) tries the segments, arcs and elliptic arcs in the
+// scalar search's order with straight_exit-inl.hpp's exit times, the scalar search's own
+// source, compiled for each SIMD target by Google Highway; so the collisions, and the
+// trajectories, are the scalar search's, bit for bit.  A particle whose circle discriminant
+// the filter cannot sign goes back to the scalar search.
 #pragma once
 
 #include "billiards/dynamics/collision.hpp"
@@ -17,9 +17,9 @@ namespace billiards::dynamics {
 namespace free_lanes {
 /// The kernel that ensembles use: that of simd::chosen_target().
 Kernel chosen_kernel();
-/// Are the table's segments and arcs few enough for the kernels' arrays (max_walls of each)?
+/// Are the table's walls few enough for the kernels' arrays (max_walls of each kind)?
 bool fits(const Table& table);
-/// The table's segments and arcs (`fits`) as the kernels read them: free_flight.hpp's views.
+/// The table's walls (`fits`) as the kernels read them: free_flight.hpp's views.
 Walls walls_of(const Table& table);
 }  // namespace free_lanes
 

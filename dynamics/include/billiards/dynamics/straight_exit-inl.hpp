@@ -1,4 +1,5 @@
-// The exit time of a straight flight through a segment or a circular arc, written once over a
+// The exit time of a straight flight through a segment, a circular arc or an elliptic arc (its
+// unit arc, through the ellipse's map), and the hit's contact, written once over a
 // number type and included into a namespace: by straight_exit.hpp into billiards::dynamics
 // (the scalar search in double, long double or MPFR), and by free_lanes_kernel.cpp into each
 // SIMD target's namespace (one particle per lane).  A `Lanes` traits class `L` supplies the number
@@ -42,6 +43,23 @@ template <class F>
 struct SegmentLanes {
   F ax, ay, nx, ny, dir_x, dir_y, slack, span_tol;
 };
+
+/// An elliptic arc's map u = L (x − c) (BasicEllipticArcWall, walls.hpp), which takes its
+/// ellipse to the unit circle, and a straight flight to a straight flight.
+template <class F>
+struct EllipseMapLanes {
+  F cx, cy, l00, l01, l10, l11;
+};
+
+/// The straight flight from s seen through the map: from L (x − c) with velocity L v (time is
+/// not mapped).  Its exit through the elliptic arc is its exit through the arc's unit arc.
+template <class L, class FR, class FW>
+[[gnu::always_inline]] inline RayLanes<typename L::Num> mapped_ray(const RayLanes<FR>& s, const EllipseMapLanes<FW>& m) {
+  using Num = typename L::Num;
+  const Num dx = s.x - m.cx, dy = s.y - m.cy;
+  const Num wx = m.l00 * s.vx + m.l01 * s.vy, wy = m.l10 * s.vx + m.l11 * s.vy;
+  return {Num(m.l00 * dx + m.l01 * dy), Num(m.l10 * dx + m.l11 * dy), wx, wy, Num(s.t), Num(wx * wx + wy * wy)};
+}
 
 /// Is the point (px, py) on the arc's circle within its span, ends included (and extended by
 /// the span tolerance)?  BasicArcWall::within_span.

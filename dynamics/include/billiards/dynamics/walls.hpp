@@ -591,6 +591,12 @@ struct BasicEllipticArcWall {
   }
 };
 
+/// An elliptic arc's map as straight_exit-inl.hpp reads it (read in place).
+template <class Real>
+EllipseMapLanes<const Real&> ellipse_map_lanes(const BasicEllipticArcWall<Real>& w) {
+  return {w.center.x(), w.center.y(), w.map(0, 0), w.map(0, 1), w.map(1, 0), w.map(1, 1)};
+}
+
 using SegmentWall = BasicSegmentWall<double>;
 using ArcWall = BasicArcWall<double>;
 using EllipticArcWall = BasicEllipticArcWall<double>;
