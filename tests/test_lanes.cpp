@@ -209,6 +209,44 @@ TEST_CASE("free lock step: of two walls hit at the same time, the first is kept,
   }
 }
 
+TEST_CASE("free lock step: the kernel itself finds the hits on elliptic arcs, at the scalar search's times") {
+  // (The batches above would pass as well if the kernel handed every such flight back.)
+  for (const char* shape : {"ellipse", "elliptic-stadium"}) {
+    const auto table = table_of(shape);
+    const auto states = states_along_orbits(table, FreeFlight{}, 4, 400);
+    const auto walls = dynamics::free_lanes::walls_of(table);
+    REQUIRE(walls.ellipse_count == int(table.elliptic_arcs().size()));
+    for (const auto& [name, kernel] : kernels<FreeFlight>()) {
+      INFO(name << " kernel, " << shape);
+      int on_ellipse = 0, handed_back = 0, mismatches = 0;
+      constexpr int lanes = dynamics::free_lanes::lanes;
+      for (std::size_t first = 0; first + lanes <= states.size(); first += lanes) {
+        dynamics::free_lanes::Rays rays;
+        for (int i = 0; i < lanes; ++i) {
+          const State& s = states[first + std::size_t(i)];
+          rays.x[i] = s.x.x(), rays.y[i] = s.x.y(), rays.vx[i] = s.v.x(), rays.vy[i] = s.v.y();
+          rays.t[i] = s.t, rays.vv[i] = s.v.squaredNorm(), rays.t_end[i] = dynamics::never;
+        }
+        dynamics::free_lanes::Hits hits;
+        kernel(walls, rays, hits);
+        for (int i = 0; i < lanes; ++i) {
+          if (hits.handed_back[i]) {
+            ++handed_back;
+            continue;
+          }
+          const auto expected = dynamics::collision(table, FreeFlight{}, states[first + std::size_t(i)]);
+          on_ellipse += hits.kind[i] == dynamics::wall_kind::elliptic_arc;
+          mismatches += hits.kind[i] != expected.wall.kind || hits.index[i] != expected.wall.index ||
+                        !same_bits(hits.t[i], expected.t);
+        }
+      }
+      CHECK(mismatches == 0);
+      CHECK(handed_back == 0);  // (no grazing flight among these)
+      CHECK(on_ellipse > int(states.size()) / 4);
+    }
+  }
+}
+
 TEST_CASE("lock step: tables with a grid, or too many walls of a kind, or no kernel, are left to the scalar search") {
   const auto wavy = table_of("wavy-1200");
   REQUIRE(wavy.grid() != nullptr);
