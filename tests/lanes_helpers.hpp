@@ -12,8 +12,8 @@
 /// An ensemble run in lock step with `lockstep` equals `simulate` particle by particle (the
 /// energies at every record time, bit for bit; collision counts; escapes), on 1, 2 and 3
 /// threads; returns the collisions of the run.
-template <class LockstepT, class Flight>
-std::uint64_t check_ensemble_equals_simulate(const LockstepT& lockstep, const billiards::dynamics::Table& table,
+template <class LockstepT, class TableT, class Flight>
+std::uint64_t check_ensemble_equals_simulate(const LockstepT& lockstep, const TableT& table,
                                              const Flight& flight, const billiards::dynamics::RunOptions& opt,
                                              std::size_t n) {
   using namespace billiards;

@@ -3,12 +3,14 @@
 // bit, from states along orbits (each starting on the wall it has just left) with and without
 // horizons, in every flat table (segments, focusing and dispersing arcs, holes, elliptic arcs)
 // and in one with more walls than a vector has lanes, in weak and strong fields of both signs;
-// and ensembles equal to `simulate`, particle by particle, for any thread count.
+// 3-D straight flights in tables of planes and spheres (focusing and dispersing); and ensembles
+// equal to `simulate`, particle by particle, for any thread count.
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/free_lockstep.hpp"
 #include "billiards/dynamics/magnetic_lockstep.hpp"
 #include "billiards/geometry.hpp"
+#include "billiards/geometry3/shape3_file.hpp"
 
 #include "lanes_helpers.hpp"
 
@@ -17,11 +19,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
 using namespace billiards;
 using dynamics::FreeFlight;
+using dynamics::FreeFlight3;
 using dynamics::MagneticFlight;
 using dynamics::State;
 using dynamics::Table;
@@ -36,26 +40,29 @@ struct TargetKernel {
 /// The kernel of each SIMD target this processor runs, for the flight's lock-step table.
 template <class Flight>
 auto kernels() {
-  constexpr bool straight = std::is_same_v<Flight, FreeFlight>;
-  using Kernel = std::conditional_t<straight, dynamics::free_lanes::Kernel, dynamics::magnetic_lanes::Kernel>;
+  using Kernel = std::conditional_t<std::is_same_v<Flight, FreeFlight>, dynamics::free_lanes::Kernel,
+                                    std::conditional_t<std::is_same_v<Flight, FreeFlight3>, dynamics::free_lanes::Kernel3,
+                                                       dynamics::magnetic_lanes::Kernel>>;
   std::vector<TargetKernel<Kernel>> all;
   for (const auto& t : dynamics::simd::runnable_targets()) {
-    if constexpr (straight) all.push_back({t.name, dynamics::free_lanes::kernel_of(t.bit)});
+    if constexpr (std::is_same_v<Flight, FreeFlight>) all.push_back({t.name, dynamics::free_lanes::kernel_of(t.bit)});
+    else if constexpr (std::is_same_v<Flight, FreeFlight3>) all.push_back({t.name, dynamics::free_lanes::kernel3_of(t.bit)});
     else all.push_back({t.name, dynamics::magnetic_lanes::kernel_of(t.bit)});
   }
   return all;
 }
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+template <class V>
+bool same_bits(const V& a, const V& b) {
+  return std::memcmp(a.data(), b.data(), sizeof(double) * std::size_t(a.size())) == 0;
+}
 
 template <class Flight>
 bool same_hit(const dynamics::FlightHit<Flight>& a, const dynamics::FlightHit<Flight>& b) {
   if (a.wall != b.wall || !same_bits(a.t, b.t)) return false;
-  return !a.found() || (same_bits(a.point.x(), b.point.x()) && same_bits(a.point.y(), b.point.y()) &&
-                        same_bits(a.normal.x(), b.normal.x()) && same_bits(a.normal.y(), b.normal.y()) &&
-                        same_bits(a.state.x.x(), b.state.x.x()) && same_bits(a.state.x.y(), b.state.x.y()) &&
-                        same_bits(a.state.v.x(), b.state.v.x()) && same_bits(a.state.v.y(), b.state.v.y()) &&
-                        same_bits(a.state.t, b.state.t));
+  return !a.found() || (same_bits(a.point, b.point) && same_bits(a.normal, b.normal) && same_bits(a.state.x, b.state.x) &&
+                        same_bits(a.state.v, b.state.v) && same_bits(a.state.t, b.state.t));
 }
 
 Table table_of(const std::string& shape) {
@@ -80,12 +87,13 @@ holes:
 /// Fresh microcanonical starts and the states after each bounce of their orbits, each flight on
 /// its own clock, as in the ensembles.  (A magnetic orbit that circles without meeting a wall
 /// ends there.)
-template <class Flight>
-std::vector<State> states_along_orbits(const Table& table, const Flight& flight, int particles, int bounces) {
-  std::vector<State> states;
+template <class TableT, class Flight>
+auto states_along_orbits(const TableT& table, const Flight& flight, int particles, int bounces) {
+  using S = typename Flight::State;
+  std::vector<S> states;
   for (int p = 0; p < particles; ++p) {
     dynamics::ParticleRng rng(97, std::uint64_t(p));
-    State s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
+    S s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
     const double v2 = s.v.squaredNorm();
     dynamics::Clock clock;
     states.push_back(s);
@@ -111,19 +119,57 @@ std::vector<std::pair<std::string, Table>> flat_tables() {
   return tables;
 }
 
+/// A 3-D table and the shape it keeps a reference to.
+struct Table3Of {
+  std::string name;
+  geometry3::Shape3 shape;
+  dynamics::Table3 table;
+  Table3Of(std::string n, geometry3::Shape3 s) : name(std::move(n)), shape(std::move(s)), table(shape.region) {}
+};
+
+/// The 3-D tables of planes and spheres: the bundled ones, and a ball with three balls inside
+/// (one focusing sphere, three dispersing ones) and a box with four.
+std::vector<std::unique_ptr<Table3Of>> sphere_and_plane_tables() {
+  std::vector<std::unique_ptr<Table3Of>> tables;
+  for (const char* shape : {"sinai3", "ball", "cube", "octahedron"})
+    tables.push_back(std::make_unique<Table3Of>(shape, geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/" + std::string(shape) + ".yaml")));
+  tables.push_back(std::make_unique<Table3Of>("ball-of-balls", geometry3::parse_shape3(R"(name: ball-of-balls
+dimension: 3
+boundary:
+  sphere: {center: [0, 0, 0], radius: 1}
+holes:
+  - ball: {center: [0.4, 0, 0], radius: 0.3}
+  - ball: {center: [-0.3, 0.4, 0.1], radius: 0.2}
+  - ball: {center: [-0.2, -0.3, -0.5], radius: 0.25}
+)", "ball-of-balls")));
+  tables.push_back(std::make_unique<Table3Of>("box-of-balls", geometry3::parse_shape3(R"(name: box-of-balls
+dimension: 3
+boundary:
+  box: {min: [-1, -0.5, -0.5], max: [1, 0.5, 0.5]}
+holes:
+  - ball: {center: [-0.5, 0, 0], radius: 0.3}
+  - ball: {center: [0.5, 0.2, 0.1], radius: 0.25}
+  - ball: {center: [0.1, -0.3, 0.3], radius: 0.1}
+  - ball: {center: [0.7, -0.25, -0.25], radius: 0.2}
+)", "box-of-balls")));
+  return tables;
+}
+
 /// Batches of every size 1..16 of states along the flight's orbits in the table and along
 /// straight orbits (on every wall, leaving it in every direction: a strong field's orbits from
 /// a fresh start may circle without meeting one), the states taken in turn, each state's horizon
 /// cycling through none and some that end flights before their walls: the lock-step hits equal
 /// the scalar search's, bit for bit, for every target.
-template <class Flight>
-void check_batches(const std::string& shape, const Table& table, const Flight& flight) {
+template <class TableT, class Flight>
+void check_batches(const std::string& shape, const TableT& table, const Flight& flight) {
   using LockstepT = dynamics::LockstepTableOf<Flight>;
+  using S = typename Flight::State;
+  using Straight = dynamics::BasicFreeFlight<double, S::dimension>;
   constexpr int lanes = LockstepT::lanes;
   // Horizons, in units of the table's size.
   const double horizons[] = {dynamics::never, 1e-3, 0.7, 3};
-  auto states = states_along_orbits(table, FreeFlight{}, 6, 2000);
-  if constexpr (!std::is_same_v<Flight, FreeFlight>) {
+  auto states = states_along_orbits(table, Straight{}, 6, 2000);
+  if constexpr (!std::is_same_v<Flight, Straight>) {
     const auto own = states_along_orbits(table, flight, 6, 2000);
     states.insert(states.end(), own.begin(), own.end());
   }
@@ -135,7 +181,7 @@ void check_batches(const std::string& shape, const Table& table, const Flight& f
     std::size_t next = 0;
     for (int round = 0; next < states.size(); ++round) {
       const int n = std::min<int>(1 + round % lanes, int(states.size() - next));
-      const State* batch[lanes];
+      const S* batch[lanes];
       double t_end[lanes];
       for (int i = 0; i < n; ++i) {
         batch[i] = &states[next + std::size_t(i)];
@@ -167,6 +213,50 @@ void check_batches(const std::string& shape, const Table& table, const Flight& f
 
 TEST_CASE("free lock step: each batch's hits are the scalar search's, bit for bit, in every flat table") {
   for (const auto& [shape, table] : flat_tables()) check_batches(shape, table, FreeFlight{});
+}
+
+TEST_CASE("free lock step in 3-D: each batch's hits are the scalar search's, bit for bit, in tables of planes and spheres") {
+  for (const auto& t : sphere_and_plane_tables()) check_batches(t->name, t->table, FreeFlight3{});
+}
+
+TEST_CASE("free lock step in 3-D: the kernel itself finds the hits on planes and spheres, at the scalar search's times") {
+  for (const auto& t : sphere_and_plane_tables()) {
+    const auto& table = t->table;
+    const auto states = states_along_orbits(table, FreeFlight3{}, 4, 400);
+    const auto walls = dynamics::free_lanes::walls_of(table);
+    for (const auto& [name, kernel] : kernels<FreeFlight3>()) {
+      INFO(name << " kernel, " << t->name);
+      int on_kind[3] = {}, handed_back = 0, mismatches = 0;
+      constexpr int lanes = dynamics::free_lanes::lanes;
+      for (std::size_t first = 0; first + lanes <= states.size(); first += lanes) {
+        dynamics::free_lanes::Rays3 rays;
+        for (int i = 0; i < lanes; ++i) {
+          const auto& s = states[first + std::size_t(i)];
+          rays.x[i] = s.x.x(), rays.y[i] = s.x.y(), rays.z[i] = s.x.z();
+          rays.vx[i] = s.v.x(), rays.vy[i] = s.v.y(), rays.vz[i] = s.v.z();
+          rays.t[i] = s.t, rays.vv[i] = s.v.squaredNorm(), rays.t_end[i] = dynamics::never;
+        }
+        dynamics::free_lanes::Hits hits;
+        kernel(walls, rays, hits);
+        for (int i = 0; i < lanes; ++i) {
+          if (hits.handed_back[i]) {
+            ++handed_back;
+            continue;
+          }
+          const auto expected = dynamics::collision(table, FreeFlight3{}, states[first + std::size_t(i)]);
+          REQUIRE(expected.found());
+          ++on_kind[expected.wall.kind];
+          mismatches += hits.kind[i] != expected.wall.kind || hits.index[i] != expected.wall.index ||
+                        !same_bits(hits.t[i], expected.t);
+        }
+      }
+      CHECK(mismatches == 0);
+      CHECK(handed_back == 0);  // (no grazing flight among these)
+      // Every wall kind of the table is met by the kernel's own search.
+      if (!table.planes().empty()) CHECK(on_kind[dynamics::wall_kind3::plane] > int(states.size()) / 10);
+      if (!table.spheres().empty()) CHECK(on_kind[dynamics::wall_kind3::sphere] > int(states.size()) / 10);
+    }
+  }
 }
 
 TEST_CASE("magnetic lock step: each batch's hits are the scalar search's, bit for bit, in every flat table") {
@@ -247,7 +337,7 @@ TEST_CASE("free lock step: the kernel itself finds the hits on elliptic arcs, at
   }
 }
 
-TEST_CASE("lock step: tables with a grid, or too many walls of a kind, or no kernel, are left to the scalar search") {
+TEST_CASE("lock step: tables with a grid, a mesh, or too many walls of a kind, or no kernel, are left to the scalar search") {
   const auto wavy = table_of("wavy-1200");
   REQUIRE(wavy.grid() != nullptr);
   for (const auto& [name, kernel] : kernels<FreeFlight>()) CHECK_FALSE(dynamics::FreeLockstepTable(wavy, FreeFlight{}, kernel).usable());
@@ -256,6 +346,22 @@ TEST_CASE("lock step: tables with a grid, or too many walls of a kind, or no ker
   // BILLIARDS_SIMD=scalar
   CHECK_FALSE(dynamics::FreeLockstepTable(table_of("clover"), FreeFlight{}, nullptr).usable());
   CHECK_FALSE(dynamics::MagneticLockstepTable(table_of("clover"), MagneticFlight{1}, nullptr).usable());
+  // 3-D: a mesh, or 25 balls.
+  const auto prism = geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/l-prism.yaml");
+  const dynamics::Table3 mesh(prism.region);
+  REQUIRE_FALSE(mesh.triangles().empty());
+  std::string balls = "name: balls\ndimension: 3\nboundary:\n  box: {min: [0, 0, 0], max: [5, 5, 1]}\nholes:\n";
+  for (int k = 0; k < 25; ++k)
+    balls += "  - ball: {center: [" + std::to_string(0.5 + k % 5) + ", " + std::to_string(0.5 + k / 5) + ", 0.5], radius: 0.2}\n";
+  const auto many = geometry3::parse_shape3(balls, "balls");
+  const dynamics::Table3 crowded(many.region);
+  REQUIRE(crowded.spheres().size() == 25);
+  for (const auto& [name, kernel] : kernels<FreeFlight3>()) {
+    CHECK_FALSE(dynamics::FreeLockstepTable3(mesh, FreeFlight3{}, kernel).usable());
+    CHECK_FALSE(dynamics::FreeLockstepTable3(crowded, FreeFlight3{}, kernel).usable());
+  }
+  const auto sinai3 = geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/sinai3.yaml");
+  CHECK_FALSE(dynamics::FreeLockstepTable3(dynamics::Table3(sinai3.region), FreeFlight3{}, nullptr).usable());
 }
 
 TEST_CASE("lock step: free and magnetic ensembles equal simulate particle by particle, for every target and 1, 2 and 3 threads") {
@@ -277,4 +383,13 @@ TEST_CASE("lock step: free and magnetic ensembles equal simulate particle by par
           check_ensemble_equals_simulate(dynamics::MagneticLockstepTable(table, flight, kernel), table, flight, opt, 40);
         }
     }
+  for (const auto& t : sphere_and_plane_tables()) {
+    dynamics::RunOptions opt;
+    opt.record_times = {0, 0.5, 10, 100};
+    INFO(t->name);
+    for (const auto& [name, kernel] : kernels<FreeFlight3>()) {
+      INFO(name << " kernel");
+      check_ensemble_equals_simulate(dynamics::FreeLockstepTable3(t->table, FreeFlight3{}, kernel), t->table, FreeFlight3{}, opt, 40);
+    }
+  }
 }

@@ -1,20 +1,29 @@
 #include "billiards/dynamics/free_lockstep.hpp"
 
+#include "billiards/dynamics/straight_exit3.hpp"
+
 #include <tuple>
 
 namespace billiards::dynamics {
 
-free_lanes::Kernel free_lanes::chosen_kernel() {
+template <>
+free_lanes::Kernel free_lanes::chosen_kernel<2>() {
   static const Kernel k = kernel_of(simd::chosen_target());
+  return k;
+}
+template <>
+free_lanes::Kernel3 free_lanes::chosen_kernel<3>() {
+  static const Kernel3 k = kernel3_of(simd::chosen_target());
   return k;
 }
 
 bool free_lanes::fits(const Table& table) {
-  return table.segments().size() <= std::size_t(max_walls) && table.arcs().size() <= std::size_t(max_walls) &&
-         table.elliptic_arcs().size() <= std::size_t(max_walls);
+  return table.segments().size() <= std::size_t(max_walls) && table.arcs().size() <= std::size_t(max_walls);
 }
 
 namespace {
+
+bool ellipses_fit(const Table& table) { return table.elliptic_arcs().size() <= std::size_t(free_lanes::max_walls); }
 
 free_lanes::Arc arc_of(const ArcWall& w) {
   const auto a = arc_lanes(w);
@@ -34,6 +43,7 @@ free_lanes::Walls free_lanes::walls_of(const Table& table) {
   }
   walls.arc_count = int(arcs.size());
   for (std::size_t i = 0; i < arcs.size(); ++i) walls.arcs[i] = arc_of(arcs[i]);
+  if (!ellipses_fit(table)) return walls;
   const auto& ellipses = table.elliptic_arcs();
   walls.ellipse_count = int(ellipses.size());
   for (std::size_t i = 0; i < ellipses.size(); ++i) {
@@ -43,23 +53,73 @@ free_lanes::Walls free_lanes::walls_of(const Table& table) {
   return walls;
 }
 
-FreeLockstepTable::FreeLockstepTable(const Table& table, const FreeFlight& flight, free_lanes::Kernel kernel)
-    : table_(&table), flight_(&flight), kernel_(kernel), usable_(kernel && !table.grid() && free_lanes::fits(table)) {
-  if (usable_) walls_ = free_lanes::walls_of(table);
+free_lanes::Walls3 free_lanes::walls_of(const Table3& table) {
+  Walls3 walls;
+  walls.plane_count = int(table.planes().size());
+  for (int i = 0; i < walls.plane_count; ++i) {
+    const auto p = plane_lanes(table.planes()[std::size_t(i)]);
+    walls.planes[i] = {p.nx, p.ny, p.nz, p.offset, p.slack};
+  }
+  walls.sphere_count = int(table.spheres().size());
+  for (int i = 0; i < walls.sphere_count; ++i) {
+    const auto b = sphere_lanes(table.spheres()[std::size_t(i)]);
+    walls.spheres[i] = {b.cx, b.cy, b.cz, b.r, b.r2, b.near, b.focusing};
+  }
+  return walls;
 }
 
-void FreeLockstepTable::collisions(const State* const* states, const double* t_end, int n,
-                                   FlightHit<FreeFlight>* hits) const {
+namespace {
+
+bool lanes_search(const Table& table) { return !table.grid() && free_lanes::fits(table) && ellipses_fit(table); }
+bool lanes_search(const Table3& table) {
+  constexpr std::size_t most = free_lanes::max_walls;
+  return table.triangles().empty() && table.planes().size() <= most && table.spheres().size() <= most;
+}
+
+/// The flights' lanes (lanes beyond n: copies of the first).
+free_lanes::Rays rays_of(const State* const* states, const double* t_end, int n) {
   free_lanes::Rays in;
   for (int i = 0; i < free_lanes::lanes; ++i) {
-    const State& s = *states[i < n ? i : 0];  // (lanes beyond n: a copy of the first)
+    const State& s = *states[i < n ? i : 0];
     in.x[i] = s.x.x(), in.y[i] = s.x.y(), in.vx[i] = s.v.x(), in.vy[i] = s.v.y();
     in.t[i] = s.t, in.vv[i] = s.v.squaredNorm(), in.t_end[i] = t_end[i < n ? i : 0];
   }
+  return in;
+}
+free_lanes::Rays3 rays_of(const State3* const* states, const double* t_end, int n) {
+  free_lanes::Rays3 in;
+  for (int i = 0; i < free_lanes::lanes; ++i) {
+    const State3& s = *states[i < n ? i : 0];
+    in.x[i] = s.x.x(), in.y[i] = s.x.y(), in.z[i] = s.x.z(), in.vx[i] = s.v.x(), in.vy[i] = s.v.y(), in.vz[i] = s.v.z();
+    in.t[i] = s.t, in.vv[i] = s.v.squaredNorm(), in.t_end[i] = t_end[i < n ? i : 0];
+  }
+  return in;
+}
+
+/// The hit's point and normal, as each table's `collision` makes them.
+std::pair<Vec2, Vec2> contact_of(const Table& table, const FlightHit<FreeFlight>& hit) {
+  return table.contact(hit.wall, hit.state.x, hit.state.v);
+}
+std::pair<Vec3, Vec3> contact_of(const Table3& table, const FlightHit<FreeFlight3>& hit) {
+  return table.contact(hit.wall, hit.state.x);
+}
+
+}  // namespace
+
+template <int Dim>
+BasicFreeLockstepTable<Dim>::BasicFreeLockstepTable(const TableT& table, const Flight& flight, Kernel kernel)
+    : table_(&table), flight_(&flight), kernel_(kernel), usable_(kernel && lanes_search(table)) {
+  if (usable_) walls_ = free_lanes::walls_of(table);
+}
+
+template <int Dim>
+void BasicFreeLockstepTable<Dim>::collisions(const typename Flight::State* const* states, const double* t_end, int n,
+                                             FlightHit<Flight>* hits) const {
+  const auto in = rays_of(states, t_end, n);
   free_lanes::Hits out;
   kernel_(walls_, in, out);
   for (int i = 0; i < n; ++i) {
-    const State& s = *states[i];
+    const auto& s = *states[i];
     auto& hit = hits[i];
     if (out.handed_back[i]) {
       hit = collision(*table_, *flight_, s, t_end[i]);
@@ -71,8 +131,11 @@ void FreeLockstepTable::collisions(const State* const* states, const double* t_e
     hit.midpoint_inside = false;
     if (!hit.found()) continue;
     hit.state = flight_->advance(s, hit.t);
-    std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x, hit.state.v);
+    std::tie(hit.point, hit.normal) = contact_of(*table_, hit);
   }
 }
+
+template class BasicFreeLockstepTable<2>;
+template class BasicFreeLockstepTable<3>;
 
 }  // namespace billiards::dynamics

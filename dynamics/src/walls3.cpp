@@ -1,52 +1,19 @@
-// Exit times of straight 3-D flights (see walls3.hpp for the rules).
+// Exit times of straight 3-D flights (see walls3.hpp for the rules): through planes and spheres
+// straight_exit3-inl.hpp's, the lanes' own source; through triangles the watertight test.
 #include "billiards/dynamics/walls3.hpp"
 
-#include <gmpxx.h>
+#include "billiards/dynamics/predicates.hpp"
+#include "billiards/dynamics/straight_exit3.hpp"
 
 #include <algorithm>
 
 namespace billiards::dynamics {
 
-namespace {
-
-int sphere_discriminant_sign_exact(const Vec3& x, const Vec3& c, const Vec3& v, double r) {
-  // Doubles are dyadic rationals, so every step is exact.
-  mpq_class f[3], w[3];
-  for (int k = 0; k < 3; ++k) f[k] = mpq_class(x[k]) - c[k], w[k] = v[k];
-  mpq_class cross2 = 0, v2 = 0;
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const mpq_class ck = f[i] * w[j] - f[j] * w[i];
-    cross2 += ck * ck;
-    v2 += w[k] * w[k];
-  }
-  const mpq_class rr(r);
-  return sgn(rr * rr * v2 - cross2);
-}
-
-/// r²|v|² − |f × v|², the cancellation-free b² − a c of the ray–sphere quadratic.
-double sphere_discriminant(const Vec3& f, const Vec3& v, double r2) {
-  return r2 * v.squaredNorm() - f.cross(v).squaredNorm();
-}
-
-}  // namespace
-
 int sphere_discriminant_sign_filtered(const Vec3& x, const Vec3& c, const Vec3& v, double r) {
-  constexpr double eps = std::numeric_limits<double>::epsilon();
   const Vec3 f = x - c;
-  double spread2 = 0;  // Σ (|f_i v_j| + |f_j v_i|)², bounding the rounding of |f × v|²
-  for (int k = 0; k < 3; ++k) {
-    const int i = (k + 1) % 3, j = (k + 2) % 3;
-    const double s = std::abs(f[i] * v[j]) + std::abs(f[j] * v[i]);
-    spread2 += s * s;
-  }
-  const double r2v2 = r * r * v.squaredNorm();
-  const double D = r2v2 - f.cross(v).squaredNorm();
-  // Rounding of f (1 ulp each), of the products, the cross components, their squares and the
-  // sums: well under 16 eps of the magnitudes; 32 for margin.  GMP decides what this cannot.
-  const double bound = 32 * eps * (r2v2 + spread2);
-  if (D > bound) return 1;
-  if (D < -bound) return -1;
+  const auto d = sphere_discriminant<ScalarLanes<double>>(f.x(), f.y(), f.z(), v.x(), v.y(), v.z(), r * r * v.squaredNorm());
+  if (d.D > d.bound) return 1;
+  if (d.D < -d.bound) return -1;
   return sphere_discriminant_sign_exact(x, c, v, r);
 }
 
@@ -71,12 +38,8 @@ TriangleWall::TriangleWall(const Vec3& a, const Vec3& b, const Vec3& c, double s
 }
 
 double straight_exit_time(const State3& s, const PlaneWall& w, double t_end) {
-  const double rate = w.normal.dot(s.v);
-  if (!(rate > 0)) return never;
-  const double beyond = w.normal.dot(s.x) - w.offset;
-  if (beyond > w.slack) return never;
-  const double t = s.t + (beyond >= 0 ? 0.0 : -beyond / rate);
-  return t <= t_end ? t : never;
+  ScalarLanes<double> scalar;
+  return straight_exit_time(scalar, ray3_lanes(s), plane_lanes(w), t_end);
 }
 
 double straight_exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double t_end) {
@@ -102,30 +65,8 @@ double straight_exit_time(const State3& s, const Ray& ray, const TriangleWall& w
 }
 
 double straight_exit_time(const State3& s, const SphereWall& w, double t_end) {
-  // |f + v τ|² − r² = a τ² + 2 b τ + c with f = x − centre (as for 2-D full circles).
-  const Vec3 f = s.x - w.center;
-  const double a = s.v.squaredNorm(), b = f.dot(s.v), c = f.squaredNorm() - w.radius2;
-  const double near = 2 * w.radius * w.slack;  // c ≈ 2 r × (distance beyond the sphere)
-  double dt;
-  if (w.focusing) {
-    if (b >= 0 && c >= 0) return c <= near ? s.t : never;  // on the sphere moving out: now
-    // Outside the sphere (escaped) and moving in: a miss or a graze is no exit.
-    if (c > 0 && sphere_discriminant_sign_filtered(s.x, w.center, s.v, w.radius) <= 0) return never;
-    const double root = std::sqrt(std::max(0.0, sphere_discriminant(f, s.v, w.radius2)));
-    dt = b <= 0 ? (root - b) / a : -c / (b + root);
-  } else {
-    if (b >= 0) return never;  // moving away from the ball
-    if (c <= 0) {
-      if (c < -near) return never;  // deep inside the ball: not near it
-      dt = 0;
-    } else {
-      // A miss or an exact tangency (a touch, not a crossing) is no collision.
-      if (sphere_discriminant_sign_filtered(s.x, w.center, s.v, w.radius) <= 0) return never;
-      dt = c / (std::sqrt(std::max(0.0, sphere_discriminant(f, s.v, w.radius2))) - b);
-    }
-  }
-  const double t = s.t + dt;
-  return t <= t_end ? t : never;
+  ScalarLanes<double> scalar;
+  return straight_exit_time(scalar, ray3_lanes(s), sphere_lanes(w), t_end);
 }
 
 }  // namespace billiards::dynamics

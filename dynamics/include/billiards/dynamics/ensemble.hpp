@@ -293,23 +293,25 @@ struct EnsembleResult {
 template <class Flight>
 inline constexpr std::size_t interleaved_particles = is_straight<Flight> ? 4 : 1;
 
-/// The lock-step table that searches a flight's collisions in a 2-D table (void: none).
+/// The lock-step table that searches a flight's collisions (void: none): driven, free and
+/// magnetic flights in 2-D, free flights in 3-D.
 template <class Flight>
 using LockstepTableOf = std::conditional_t<
     std::is_same_v<Flight, PeriodicDriveFlight>, LockstepTable,
     std::conditional_t<std::is_same_v<Flight, FreeFlight>, FreeLockstepTable,
-                       std::conditional_t<std::is_same_v<Flight, MagneticFlight>, MagneticLockstepTable, void>>>;
+                       std::conditional_t<std::is_same_v<Flight, MagneticFlight>, MagneticLockstepTable,
+                                          std::conditional_t<std::is_same_v<Flight, FreeFlight3>, FreeLockstepTable3, void>>>>;
 
 /// Runs particles [first, last) of an ensemble in a table that a lock-step table can search
 /// (LockstepTableOf the flight): each thread keeps
 /// `lanes` particles in flight and finds their collisions together, taking the next particle as
 /// soon as one is done.  Each particle's arithmetic is that of `simulate`, whatever its
 /// neighbours in the lanes.
-template <class Flight, class LockstepT, class Initial>
-void run_in_lockstep(const LockstepT& lockstep_table, const Table& table, const Flight& flight,
+template <class Flight, class LockstepT, class TableT, class Initial>
+void run_in_lockstep(const LockstepT& lockstep_table, const TableT& table, const Flight& flight,
                      const Initial& initial, const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                      EnsembleResult& out, const std::function<void(std::size_t)>& progress) {
-  using Run = Trajectory<Flight, Table>;
+  using Run = Trajectory<Flight, TableT>;
   constexpr int lanes = LockstepT::lanes;
   const std::size_t m = opt.record_times.size();
   const RecordMarks<Flight> marks(flight, opt.record_times);
@@ -375,7 +377,7 @@ template <class Flight, class TableT, class Initial>
 void run_particles(const TableT& table, const Flight& flight, const Initial& initial,
                    const RunOptions& opt, std::size_t first, std::size_t last, int threads,
                    EnsembleResult& out, const std::function<void(std::size_t)>& progress = {}) {
-  if constexpr (std::is_same_v<TableT, Table> && !std::is_void_v<LockstepTableOf<Flight>>) {
+  if constexpr (std::is_constructible_v<LockstepTableOf<Flight>, const TableT&, const Flight&>) {
     const LockstepTableOf<Flight> lockstep_table(table, flight);
     if (lockstep_table.usable())
       return run_in_lockstep(lockstep_table, table, flight, initial, opt, first, last, threads, out, progress);

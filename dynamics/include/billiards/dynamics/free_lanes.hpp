@@ -35,23 +35,46 @@ struct Walls {
   int segment_count = 0, arc_count = 0, ellipse_count = 0;
 };
 
+/// A face of a convex polyhedron (PlaneWall's fields).
+struct Plane {
+  double nx, ny, nz, offset, slack;
+};
+/// A sphere (SphereWall's fields; near = 2 r × slack).
+struct Sphere {
+  double cx, cy, cz, r, r2, near;
+  bool focusing;
+};
+/// The planes and spheres of a 3-D table without a mesh.
+struct Walls3 {
+  Plane planes[max_walls];
+  Sphere spheres[max_walls];
+  int plane_count = 0, sphere_count = 0;
+};
+
 /// The flights, lane by lane: the state (position, velocity, time, |v|²) and horizon.
 struct alignas(64) Rays {
   double x[lanes], y[lanes], vx[lanes], vy[lanes], t[lanes], vv[lanes], t_end[lanes];
 };
+/// The same for 3-D flights.
+struct alignas(64) Rays3 {
+  double x[lanes], y[lanes], z[lanes], vx[lanes], vy[lanes], vz[lanes], t[lanes], vv[lanes], t_end[lanes];
+};
 
 /// What the search found, lane by lane: the first wall's time (t_end: none), kind
-/// (wall_kind::segment, arc or elliptic_arc; −1: none) and index; or `handed_back`: a circle
-/// discriminant the filter could not sign, for the scalar search to decide exactly.
+/// (wall_kind::segment, arc or elliptic_arc; in 3-D wall_kind3::plane or sphere; −1: none) and
+/// index; or `handed_back`: a circle's or a sphere's discriminant the filter could not sign,
+/// for the scalar search to decide exactly.
 struct alignas(64) Hits {
   double t[lanes];
   std::int64_t kind[lanes], index[lanes];
   std::int64_t handed_back[lanes];  // −1 (true) or 0
 };
 
-/// The kernel, as compiled for one SIMD target.
+/// The kernels, as compiled for one SIMD target: 2-D and 3-D.
 using Kernel = void (*)(const Walls& walls, const Rays& rays, Hits& hits);
-/// The kernel compiled for a SIMD target (simd.hpp); nullptr for simd::scalar.
+using Kernel3 = void (*)(const Walls3& walls, const Rays3& rays, Hits& hits);
+/// The kernels compiled for a SIMD target (simd.hpp); nullptr for simd::scalar.
 Kernel kernel_of(std::int64_t target);
+Kernel3 kernel3_of(std::int64_t target);
 
 }  // namespace billiards::dynamics::free_lanes

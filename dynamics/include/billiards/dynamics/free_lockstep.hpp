@@ -1,46 +1,81 @@
 // Straight flights searched in lock step: the next collisions of several particles at once, one
 // particle per SIMD lane (internal to dynamics: the ensembles of free flights use it).
 //
-// The kernel (src/free_lanes_kernel.cpp) tries the segments, arcs and elliptic arcs in the
-// scalar search's order with straight_exit-inl.hpp's exit times, the scalar search's own
-// source, compiled for each SIMD target by Google Highway; so the collisions, and the
-// trajectories, are the scalar search's, bit for bit.  A particle whose circle discriminant
-// the filter cannot sign goes back to the scalar search.
+// The kernels (src/free_lanes_kernel.cpp) try the walls in the scalar search's order with its
+// own exit times, compiled for each SIMD target by Google Highway: in 2-D the segments, arcs and
+// elliptic arcs (straight_exit-inl.hpp), in 3-D the planes and spheres of a table without a mesh
+// (straight_exit3-inl.hpp); so the collisions, and the trajectories, are the scalar search's,
+// bit for bit.  A particle whose circle's or sphere's discriminant the filter cannot sign goes
+// back to the scalar search.
 #pragma once
 
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/free_lanes.hpp"
 #include "billiards/dynamics/simd.hpp"
+#include "billiards/dynamics/table3.hpp"
 
 namespace billiards::dynamics {
 
 namespace free_lanes {
+/// The tables, walls, flights and kernel of each dimension.
+template <int Dim>
+struct Of;
+template <>
+struct Of<2> {
+  using Table = dynamics::Table;
+  using Walls = free_lanes::Walls;
+  using Rays = free_lanes::Rays;
+  using Kernel = free_lanes::Kernel;
+};
+template <>
+struct Of<3> {
+  using Table = Table3;
+  using Walls = Walls3;
+  using Rays = Rays3;
+  using Kernel = Kernel3;
+};
 /// The kernel that ensembles use: that of simd::chosen_target().
-Kernel chosen_kernel();
-/// Are the table's walls few enough for the kernels' arrays (max_walls of each kind)?
+template <int Dim>
+typename Of<Dim>::Kernel chosen_kernel();
+template <>
+Kernel chosen_kernel<2>();
+template <>
+Kernel3 chosen_kernel<3>();
+/// Are the segments and arcs few enough for the kernels' arrays (max_walls of each kind; the
+/// magnetic kernel reads these two)?
 bool fits(const Table& table);
-/// The table's walls (`fits`) as the kernels read them: free_flight.hpp's views.
+/// The table's walls as the kernels read them (free_flight.hpp's views): the segments and arcs
+/// (`fits`), and the elliptic arcs when they fit too.
 Walls walls_of(const Table& table);
+/// The planes and spheres of a 3-D table without a mesh (at most max_walls of each).
+Walls3 walls_of(const Table3& table);
 }  // namespace free_lanes
 
-/// A table whose straight flights can be searched in lock step: without a grid (at most
-/// BasicTable::grid_threshold walls), ready for `collisions`.
-class FreeLockstepTable {
+/// A table whose straight flights can be searched in lock step: in 2-D without a grid (at
+/// most BasicTable::grid_threshold walls) and with at most max_walls of each kind, in 3-D
+/// without a mesh and with at most max_walls planes and spheres; ready for `collisions`.
+template <int Dim>
+class BasicFreeLockstepTable {
  public:
+  using TableT = typename free_lanes::Of<Dim>::Table;
+  using Flight = BasicFreeFlight<double, Dim>;
+  using Kernel = typename free_lanes::Of<Dim>::Kernel;
   static constexpr int lanes = free_lanes::lanes;
-  /// Not `usable` when the table has a grid, or the kernel is none.
-  FreeLockstepTable(const Table& table, const FreeFlight& flight, free_lanes::Kernel kernel = free_lanes::chosen_kernel());
+  /// Not `usable` when the table is not one of those, or the kernel is none.
+  BasicFreeLockstepTable(const TableT& table, const Flight& flight, Kernel kernel = free_lanes::chosen_kernel<Dim>());
   bool usable() const { return usable_; }
   /// hits[i] = collision(table, flight, *states[i], t_end[i]) for 0 < n ≤ lanes: the same hits,
   /// bit for bit (where none is found, the hit's time and wall only).
-  void collisions(const State* const* states, const double* t_end, int n, FlightHit<FreeFlight>* hits) const;
+  void collisions(const typename Flight::State* const* states, const double* t_end, int n, FlightHit<Flight>* hits) const;
 
  private:
-  const Table* table_;
-  const FreeFlight* flight_;
-  free_lanes::Kernel kernel_;
-  free_lanes::Walls walls_;
+  const TableT* table_;
+  const Flight* flight_;
+  Kernel kernel_;
+  typename free_lanes::Of<Dim>::Walls walls_;
   bool usable_ = false;
 };
+using FreeLockstepTable = BasicFreeLockstepTable<2>;
+using FreeLockstepTable3 = BasicFreeLockstepTable<3>;
 
 }  // namespace billiards::dynamics

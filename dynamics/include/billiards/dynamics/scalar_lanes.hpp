@@ -74,7 +74,7 @@ struct ScalarLanes {
     s = std::bit_cast<double>(sq ^ ((q & 2) << 62));
     c = std::bit_cast<double>(cq ^ (((q + 1) & 2) << 62));
   }
-  /// Is the discriminant D of the ray against the arc's circle positive (a crossing)?  Asked
+  /// Is the discriminant D of the ray against the arc's circle (or the sphere) positive (a crossing)?  Asked
   /// only where `needed`.  In double the value decides unless it lies within its forward error
   /// bound; then the exact sign (GMP).  A reference type's own precision decides.
   template <class Bound, class Ray, class Arc>
@@ -84,7 +84,11 @@ struct ScalarLanes {
       const double e = bound();
       if (D > e) return true;
       if (D < -e) return false;
-      return circle_discriminant_sign_exact(Vec2(s.x, s.y), Vec2(w.cx, w.cy), Vec2(s.vx, s.vy), w.r) > 0;
+      if constexpr (requires { s.z; })  // a 3-D ray and a sphere
+        return sphere_discriminant_sign_exact(Eigen::Vector3d(s.x, s.y, s.z), Eigen::Vector3d(w.cx, w.cy, w.cz),
+                                              Eigen::Vector3d(s.vx, s.vy, s.vz), w.r) > 0;
+      else
+        return circle_discriminant_sign_exact(Vec2(s.x, s.y), Vec2(w.cx, w.cy), Vec2(s.vx, s.vy), w.r) > 0;
     } else {
       return D > 0;
     }
