@@ -76,25 +76,28 @@ bool lanes_search(const Table3& table) {
   return table.triangles().empty() && table.planes().size() <= most && table.spheres().size() <= most;
 }
 
-/// The flights' lanes (lanes beyond n: copies of the first).
-free_lanes::Rays rays_of(const State* const* states, const double* t_end, int n) {
-  free_lanes::Rays in;
-  for (int i = 0; i < free_lanes::lanes; ++i) {
+}  // namespace
+
+free_lanes::Rays free_lanes::rays_of(const State* const* states, const double* t_end, int n) {
+  Rays in;
+  for (int i = 0; i < lanes; ++i) {
     const State& s = *states[i < n ? i : 0];
     in.x[i] = s.x.x(), in.y[i] = s.x.y(), in.vx[i] = s.v.x(), in.vy[i] = s.v.y();
     in.t[i] = s.t, in.vv[i] = s.v.squaredNorm(), in.t_end[i] = t_end[i < n ? i : 0];
   }
   return in;
 }
-free_lanes::Rays3 rays_of(const State3* const* states, const double* t_end, int n) {
-  free_lanes::Rays3 in;
-  for (int i = 0; i < free_lanes::lanes; ++i) {
+free_lanes::Rays3 free_lanes::rays_of(const State3* const* states, const double* t_end, int n) {
+  Rays3 in;
+  for (int i = 0; i < lanes; ++i) {
     const State3& s = *states[i < n ? i : 0];
     in.x[i] = s.x.x(), in.y[i] = s.x.y(), in.z[i] = s.x.z(), in.vx[i] = s.v.x(), in.vy[i] = s.v.y(), in.vz[i] = s.v.z();
     in.t[i] = s.t, in.vv[i] = s.v.squaredNorm(), in.t_end[i] = t_end[i < n ? i : 0];
   }
   return in;
 }
+
+namespace {
 
 /// The hit's point and normal, as each table's `collision` makes them.
 std::pair<Vec2, Vec2> contact_of(const Table& table, const FlightHit<FreeFlight>& hit) {
@@ -115,7 +118,7 @@ BasicFreeLockstepTable<Dim>::BasicFreeLockstepTable(const TableT& table, const F
 template <int Dim>
 void BasicFreeLockstepTable<Dim>::collisions(const typename Flight::State* const* states, const double* t_end, int n,
                                              FlightHit<Flight>* hits) const {
-  const auto in = rays_of(states, t_end, n);
+  const auto in = free_lanes::rays_of(states, t_end, n);
   free_lanes::Hits out;
   kernel_(walls_, in, out);
   for (int i = 0; i < n; ++i) {

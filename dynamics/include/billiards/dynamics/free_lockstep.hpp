@@ -49,6 +49,9 @@ bool fits(const Table& table);
 Walls walls_of(const Table& table);
 /// The planes and spheres of a 3-D table without a mesh (at most max_walls of each).
 Walls3 walls_of(const Table3& table);
+/// The flights as the kernels read them, lane by lane (lanes beyond n: copies of the first).
+Rays rays_of(const State* const* states, const double* t_end, int n);
+Rays3 rays_of(const State3* const* states, const double* t_end, int n);
 }  // namespace free_lanes
 
 /// A table whose straight flights can be searched in lock step: in 2-D without a grid (at
