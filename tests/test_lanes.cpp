@@ -371,13 +371,15 @@ TEST_CASE("lock step: free and magnetic ensembles equal simulate particle by par
           check_ensemble_equals_simulate(dynamics::MagneticLockstepTable(table, flight, kernel), table, flight, opt, 40);
         }
     }
-  for (const auto& t : sphere_and_plane_tables()) {
-    dynamics::RunOptions opt;
-    opt.record_times = {0, 0.5, 10, 100};
-    INFO(t->name);
-    for (const auto& [name, kernel] : kernels<FreeFlight3>()) {
-      INFO(name << " kernel");
-      check_ensemble_equals_simulate(dynamics::FreeLockstepTable3(t->table, FreeFlight3{}, kernel), t->table, FreeFlight3{}, opt, 40);
+  for (const auto& t : sphere_and_plane_tables())
+    for (const bool verify : {false, true}) {
+      dynamics::RunOptions opt;
+      opt.record_times = {0, 0.5, 10, 100};
+      opt.verify_every_flight = verify;
+      INFO(t->name << (verify ? ", every flight verified" : ""));
+      for (const auto& [name, kernel] : kernels<FreeFlight3>()) {
+        INFO(name << " kernel");
+        check_ensemble_equals_simulate(dynamics::FreeLockstepTable3(t->table, FreeFlight3{}, kernel), t->table, FreeFlight3{}, opt, 40);
+      }
     }
-  }
 }
