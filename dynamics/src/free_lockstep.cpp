@@ -70,10 +70,15 @@ free_lanes::Walls3 free_lanes::walls_of(const Table3& table) {
 
 namespace {
 
-bool lanes_search(const Table& table) { return !table.grid() && free_lanes::fits(table) && ellipses_fit(table); }
+/// Can the kernel search the table: every wall of a kind it knows, few enough of each?
+bool lanes_search(const Table& table) {
+  const bool known = table.wall_count() == table.segments().size() + table.arcs().size() + table.elliptic_arcs().size();
+  return known && !table.grid() && free_lanes::fits(table) && ellipses_fit(table);
+}
 bool lanes_search(const Table3& table) {
   constexpr std::size_t most = free_lanes::max_walls;
-  return table.triangles().empty() && table.planes().size() <= most && table.spheres().size() <= most;
+  const bool known = table.wall_count() == table.planes().size() + table.spheres().size();
+  return known && table.planes().size() <= most && table.spheres().size() <= most;
 }
 
 }  // namespace

@@ -54,9 +54,10 @@ Rays rays_of(const State* const* states, const double* t_end, int n);
 Rays3 rays_of(const State3* const* states, const double* t_end, int n);
 }  // namespace free_lanes
 
-/// A table whose straight flights can be searched in lock step: in 2-D without a grid (at
-/// most BasicTable::grid_threshold walls) and with at most max_walls of each kind, in 3-D
-/// without a mesh and with at most max_walls planes and spheres; ready for `collisions`.
+/// A table whose straight flights can be searched in lock step: in 2-D segments, arcs and
+/// elliptic arcs without a grid (at most BasicTable::grid_threshold walls) and at most
+/// max_walls of each kind, in 3-D at most max_walls planes and max_walls spheres (no mesh);
+/// ready for `collisions`.
 template <int Dim>
 class BasicFreeLockstepTable {
  public:
