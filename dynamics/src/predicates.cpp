@@ -14,6 +14,7 @@ int circle_discriminant_sign_exact(const Vec2& x, const Vec2& c, const Vec2& v, 
 }
 
 int sphere_discriminant_sign_exact(const Eigen::Vector3d& x, const Eigen::Vector3d& c, const Eigen::Vector3d& v, double r) {
+  // (Exact as above.)
   mpq_class f[3], w[3];
   for (int k = 0; k < 3; ++k) f[k] = mpq_class(x[k]) - c[k], w[k] = v[k];
   mpq_class cross2 = 0, v2 = 0;

@@ -74,9 +74,10 @@ struct ScalarLanes {
     s = std::bit_cast<double>(sq ^ ((q & 2) << 62));
     c = std::bit_cast<double>(cq ^ (((q + 1) & 2) << 62));
   }
-  /// Is the discriminant D of the ray against the arc's circle (or the sphere) positive (a crossing)?  Asked
-  /// only where `needed`.  In double the value decides unless it lies within its forward error
-  /// bound; then the exact sign (GMP).  A reference type's own precision decides.
+  /// Is the discriminant D of the ray against the arc's circle (or a 3-D ray against the
+  /// sphere) positive (a crossing)?  Asked only where `needed`.  In double the value decides
+  /// unless it lies within its forward error bound; then the exact sign (GMP).  A reference
+  /// type's own precision decides.
   template <class Bound, class Ray, class Arc>
   bool discriminant_positive_filtered(bool needed, const Num& D, Bound bound, const Ray& s, const Arc& w) const {
     if (!needed) return false;

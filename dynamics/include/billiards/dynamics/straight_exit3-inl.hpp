@@ -4,7 +4,7 @@
 // walls3.cpp), and by free_lanes_kernel.cpp into each SIMD target's namespace (one particle per
 // lane).  The traits `L` are straight_exit-inl.hpp's; the sphere's discriminant is signed by
 // l.discriminant_positive_filtered(needed, D, bound, ray, sphere), which sees a 3-D ray.
-// (No include guard: included once into each namespace, after straight_exit-inl.hpp.)
+// (No include guard: included once into each namespace.)
 
 /// The start of a straight 3-D flight: position, velocity, time, |v|².
 template <class F, class Num = std::remove_cv_t<std::remove_reference_t<F>>>
