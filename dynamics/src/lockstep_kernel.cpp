@@ -1,10 +1,12 @@
 // The lock-step search of driven flights (lockstep.hpp), compiled once for each SIMD target of
 // Google Highway: hwy/foreach_target.h includes this file again for each (SSE4, AVX2 and
 // AVX-512 on x86-64, and EMU128 or SCALAR, plain C++, everywhere), each in its own namespace;
-// lockstep.cpp chooses one at run time.  The search holds sixteen lanes whatever the target:
-// a Pack is 16 / L vectors of the target's L lanes.
+// lockstep.cpp chooses one at run time.  A call searches sixteen flights (lockstep::lanes): in
+// W = 16 lanes on AVX-512 (two vectors of eight), and eight at a time elsewhere (AVX2: two
+// vectors of four), where sixteen lanes would overflow the target's registers (BENCHMARKS.md,
+// driven clover on Zen 3).
 //
-// The search's arithmetic is the scalar search's own source, with the traits of sixteen lanes
+// The search's arithmetic is the scalar search's own source, with the traits of W lanes
 // (PackLanes): drive_phase-inl.hpp (the phase's advance and reduction, its sine and cosine and
 // their shift), driven_exit-inl.hpp (the guide's numbers, creeping, SphereGap's numbers,
 // windows, sign of f' and Taylor samples, the span test of a window, monotone_crossing's
@@ -42,13 +44,14 @@ namespace {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-constexpr int W = lanes;
 using D = hn::ScalableTag<double>;       // the target's vector of doubles
 using DI = hn::RebindToSigned<D>;        // and of 64-bit integers
 constexpr int L = int(hn::MaxLanes(D()));
-static_assert(W % L == 0 && L <= max_walls && max_walls <= W && max_walls % L == 0,
-              "a Pack is whole vectors; a table's walls fill one or more, and fit in a Pack");
-constexpr int K = W / L;  // vectors in a Pack
+constexpr int W = L >= 8 ? lanes : lanes / 2;  // lanes searched together
+static_assert(lanes % W == 0 && W % L == 0 && L <= max_walls && max_walls % L == 0,
+              "a Pack is whole vectors, a call's flights whole Packs; a table's walls fill one or more vectors");
+constexpr int K = W / L;           // vectors in a Pack
+constexpr int KW = max_walls / L;  // vectors of a table's field
 
 // Every function here is inlined: a Pack passed to a call costs more than most of them (and
 // GCC inlines a function of Highway's vectors less readily than one of its own vector types).
@@ -60,16 +63,17 @@ constexpr int K = W / L;  // vectors in a Pack
 #define ROUND_PART [[gnu::noinline]]
 #define EACH_VECTOR _Pragma("GCC unroll 16") for (int k = 0; k < K; ++k)
 
-/// Sixteen lanes in K vectors, every operation issued for each vector one after the other: the
-/// chains of dependent operations (a round of the search is one) overlap in the processor.
-template <class V>
+/// W lanes in K vectors (or N: a table's fields), every operation issued for each vector one
+/// after the other: the chains of dependent operations (a round of the search is one) overlap
+/// in the processor.
+template <class V, int N = K>
 struct Parts {
-  V v[K];
+  V v[N];
 };
 using VD = hn::Vec<D>;
 using VI = hn::Vec<DI>;
 using Pack = Parts<VD>;
-/// Sixteen 64-bit integers: lane indices, counters, and truth values (−1 true, 0 false, as
+/// W 64-bit integers: lane indices, counters, and truth values (−1 true, 0 false, as
 /// the comparisons of C's vector extensions make them).
 using Mask = Parts<VI>;
 /// f of each vector of x.
@@ -188,11 +192,11 @@ LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_as(const T* x) {
 LANES Pack load(const double* x) { return load_as(x); }
 LANES Mask load_mask(const std::int64_t* x) { return load_as(x); }
 LANES void store(double* x, Pack p) { EACH_VECTOR hn::StoreU(p.v[k], D(), x + k * L); }
-/// A table's field (max_walls entries, in max_walls / L of a Pack's vectors), for `pick`.
+/// A table's field (max_walls entries, in KW vectors), for `pick`.
 template <class T>
-LANES Parts<hn::Vec<hn::Rebind<T, D>>> load_walls(const T* x) {
-  Parts<hn::Vec<hn::Rebind<T, D>>> r;
-  EACH_VECTOR r.v[k] = hn::LoadU(hn::Rebind<T, D>(), x + k * L % max_walls);
+LANES Parts<hn::Vec<hn::Rebind<T, D>>, KW> load_walls(const T* x) {
+  Parts<hn::Vec<hn::Rebind<T, D>>, KW> r;
+  for (int k = 0; k < KW; ++k) r.v[k] = hn::LoadU(hn::Rebind<T, D>(), x + k * L);
   return r;
 }
 /// The vectors of load_walls that `pick` looks in: those that hold the first half of
@@ -238,7 +242,7 @@ LANES Pack min(Pack a, Pack b) { return sel(b < a, b, a); }
 /// A table's field (load_walls, its walls in the first `vectors`) for each lane's wall index
 /// (taken modulo max_walls; an index beyond the table's walls reads a padding wall or any wall).
 template <class V, int vectors>
-LANES Parts<V> pick(Parts<V> table, Mask index, WallVectors<vectors>) {
+LANES Parts<V> pick(const Parts<V, KW>& table, Mask index, WallVectors<vectors>) {
   const hn::DFromV<V> d;
   Parts<V> r;
   EACH_VECTOR {
@@ -252,7 +256,7 @@ LANES Parts<V> pick(Parts<V> table, Mask index, WallVectors<vectors>) {
 }
 LANES Pack cross(Pack ax, Pack ay, Pack bx, Pack by) { return ax * by - ay * bx; }
 
-// ---- The traits of sixteen lanes, and the scalar search's own source -----------------------
+// ---- The traits of W lanes, and the scalar search's own source -----------------------------
 
 /// The traits of a Pack for the algorithms written over `Lanes` (straight_exit-inl.hpp,
 /// drive_phase-inl.hpp, driven_exit-inl.hpp): one flight per lane, branches as selections.
@@ -328,27 +332,36 @@ enum class Mix { arcs, segments, both };
 constexpr bool has_arcs(Mix m) { return m != Mix::segments; }
 constexpr bool has_segments(Mix m) { return m != Mix::arcs; }
 
-/// A wall's fields for each lane: a segment's or an arc's (`arc`), the other kind's unused.
-struct Wall {
-  Mask arc;
-  Pack slack;
-  Pack cx, cy, r, sign, fx, fy, tx, ty;  // an arc
-  Mask full, half;
-  Pack ax, ay, bx, by, nx, ny, dir_x, dir_y, dir_norm, span_tol;  // a segment
-  Wall() = default;
-  /// Wall number wall[i] in lane i, from the walls' fields in lanes (`Wall(walls, mix)`), a
-  /// table whose walls fill `vectors` of them.
-  template <int n>
-  LANES Wall(const Wall& all, Mask wall, Mix mix, WallVectors<n> vectors) {
-#define PICK(f) f = pick(all.f, wall, vectors);
-    WALL_FIELDS(PICK, has_arcs(mix), has_segments(mix))
-#undef PICK
-  }
-  /// The walls of a table, one per lane (in as many of a Pack's vectors as they need).
-  LANES Wall(const Walls& w, Mix mix) {
+/// The fields of walls in the lanes of N vectors: a segment's or an arc's (`arc`), the other
+/// kind's unused.
+template <int N>
+struct WallFields {
+  Parts<VI, N> arc;
+  Parts<VD, N> slack;
+  Parts<VD, N> cx, cy, r, sign, fx, fy, tx, ty;  // an arc
+  Parts<VI, N> full, half;
+  Parts<VD, N> ax, ay, bx, by, nx, ny, dir_x, dir_y, dir_norm, span_tol;  // a segment
+};
+
+/// The walls of a table, one per lane of KW vectors.
+struct WallTable : WallFields<KW> {
+  LANES WallTable(const Walls& w, Mix mix) {
 #define LOAD(f) f = load_walls(w.f);
     WALL_FIELDS(LOAD, has_arcs(mix), has_segments(mix))
 #undef LOAD
+  }
+};
+
+/// A wall's fields for each lane: a segment's or an arc's (`arc`), the other kind's unused.
+struct Wall : WallFields<K> {
+  Wall() = default;
+  /// Wall number wall[i] in lane i, from the table's walls `all`, whose walls fill `vectors`
+  /// of its vectors.
+  template <int n>
+  LANES Wall(const WallTable& all, Mask wall, Mix mix, WallVectors<n> vectors) {
+#define PICK(f) f = pick(all.f, wall, vectors);
+    WALL_FIELDS(PICK, has_arcs(mix), has_segments(mix))
+#undef PICK
   }
   /// Wall number i in every lane.
   LANES Wall(const Walls& w, int i) {
@@ -412,9 +425,11 @@ struct Quiver {
   GuideLanes<Pack> numbers;
   Mask creeping;  // (handed back: the scalar search, wall by wall)
   Pack rounding_rate;
-  explicit Quiver(const Drive& d, const Flights& f)
-      : sx(load(f.sx)), sy(load(f.sy)), v0x(load(f.vx)), v0y(load(f.vy)), phase(load(f.phase_hi) + load(f.phase_lo)),
-        sin_phase(load(f.sin_phase)), cos_phase(load(f.cos_phase)), omega(splat(d.omega)), accel_x(splat(d.accel_x)),
+  /// Of the flights from number `first` on.
+  explicit Quiver(const Drive& d, const Flights& f, int first)
+      : sx(load(f.sx + first)), sy(load(f.sy + first)), v0x(load(f.vx + first)), v0y(load(f.vy + first)),
+        phase(load(f.phase_hi + first) + load(f.phase_lo + first)), sin_phase(load(f.sin_phase + first)),
+        cos_phase(load(f.cos_phase + first)), omega(splat(d.omega)), accel_x(splat(d.accel_x)),
         accel_y(splat(d.accel_y)), amp_x_x(splat(d.amp_x_x)), amp_x_y(splat(d.amp_x_y)), amp_v_x(splat(d.amp_v_x)),
         amp_v_y(splat(d.amp_v_y)), accel_norm(splat(d.accel_norm)), inv_omega(splat(d.inv_omega)),
         delta(splat(d.delta)) {
@@ -455,7 +470,7 @@ struct Windows {
 /// end cut at the best hit so far, which can only be earlier: −1 at the end here is −1 there,
 /// since for an arc qe and the threshold, rounded, only decrease with the end, and an inward
 /// guide cannot be outward too; for a segment the sign does not depend on the window), and one
-/// visit fewer for a lane is one round fewer for all sixteen when it is the last to finish.
+/// visit fewer for a lane is one round fewer for all W when it is the last to finish.
 LANES void wall_windows(const Quiver& q, const Walls& walls, Pack horizon, Mask live, Windows& out, int w) {
   const Wall wall(walls, w);
   WindowLanes<Pack, Mask> found[2];
@@ -527,26 +542,28 @@ class Lanes {
     if (any(choosing_)) choose();
     if (any(searching_)) step();
   }
-  void write(Hits& hits) const {
-    store(hits.tau, tau_best_), store(hits.theta, theta_), store(hits.sin, sin_), store(hits.cos, cos_);
+  /// The hits of the flights from number `first` on.
+  void write(Hits& hits, int first) const {
+    store(hits.tau + first, tau_best_), store(hits.theta + first, theta_), store(hits.sin + first, sin_);
+    store(hits.cos + first, cos_);
     const auto wall = values(best_wall_), handed_back = values(handed_back_);
-    for (int i = 0; i < W; ++i) hits.wall[i] = int(wall[i]), hits.handed_back[i] = handed_back[i] != 0;
+    for (int i = 0; i < W; ++i) hits.wall[first + i] = int(wall[i]), hits.handed_back[first + i] = handed_back[i] != 0;
   }
 
   /// The flight's state at each lane's hit, as LockstepTable::collisions has the scalar code
   /// make it (t = s.t + τ; PeriodicDriveFlight::advance from the root's sample; the arc's
   /// contact), into `hits` where `made`.  A lane whose phase is too far from the sample's to
   /// shift, or beyond the three-part reduction, is left to the scalar code.
-  ROUND_PART void make_states(const Cells& cells, const Flights& f, Hits& hits) const {
+  ROUND_PART void make_states(const Cells& cells, const Flights& f, Hits& hits, int first) const {
     const Quiver& q = q_;
     const Mask found = ~handed_back_ & (best_wall_ >= 0);
     Mask made{};
     if (any(found)) {
-      const Pack st = load(f.t), t = st + tau_best_, tau = t - st;
-      check_midpoints(cells, found, st, t, hits);
+      const Pack st = load(f.t + first), t = st + tau_best_, tau = t - st;
+      check_midpoints(cells, found, st, t, hits, first);
       // set_phase_at: θ = advance_phase(s.phase, ω, τ), its sine and cosine shifted from the
       // sample's by h = θ − sample (Phase's operator−, then to double).
-      const auto theta = advance_phase<PackLanes>(Unevaluated<Pack>{load(f.phase_hi), load(f.phase_lo)}, q.omega, tau);
+      const auto theta = advance_phase<PackLanes>(Unevaluated<Pack>{load(f.phase_hi + first), load(f.phase_lo + first)}, q.omega, tau);
       const auto shift = phase_difference(theta, Unevaluated<Pack>{theta_, splat(0.0)});
       const Pack h = shift.hi + shift.lo;
       const auto [sn, cs] = shifted<PackLanes>(SinCos<Pack>{sin_, cos_}, h);
@@ -565,19 +582,20 @@ class Lanes {
         c = kinds.by_kind([&]() LANES_LAMBDA { return arc_contact(l, a.arc_lanes(), a.slack, x, y, vx, vy); },
                           [&]() LANES_LAMBDA { return segment_contact<PackLanes>(a.segment_lanes(), a.bx, a.by, x, y); });
       });
-      store(hits.t, t), store(hits.x, x), store(hits.y, y), store(hits.vx, vx), store(hits.vy, vy);
-      store(hits.phase_hi, phase_hi), store(hits.phase_lo, phase_lo), store(hits.sin_phase, sn), store(hits.cos_phase, cs);
-      store(hits.point_x, c.x), store(hits.point_y, c.y), store(hits.normal_x, c.nx), store(hits.normal_y, c.ny);
+      auto put = [first](double* field, Pack p) LANES_LAMBDA { store(field + first, p); };
+      put(hits.t, t), put(hits.x, x), put(hits.y, y), put(hits.vx, vx), put(hits.vy, vy);
+      put(hits.phase_hi, phase_hi), put(hits.phase_lo, phase_lo), put(hits.sin_phase, sn), put(hits.cos_phase, cs);
+      put(hits.point_x, c.x), put(hits.point_y, c.y), put(hits.normal_x, c.nx), put(hits.normal_y, c.ny);
     }
     const auto made_in = values(made);
-    for (int i = 0; i < W; ++i) hits.made[i] = made_in[i] != 0;
+    for (int i = 0; i < W; ++i) hits.made[first + i] = made_in[i] != 0;
   }
 
  private:
   /// Table::certainly_contains of each found lane's oscillation segment at mid-flight, as
   /// Trajectory::inside_at asks it at 0.5 (s.t + t): the segment g ± F/(mω²) (sweep), g the
   /// guide there; the cells of its ends (Classes::cell_of) in lanes, their classes lane by lane.
-  void check_midpoints(const Cells& cells, Mask found, Pack st, Pack t, Hits& hits) const {
+  void check_midpoints(const Cells& cells, Mask found, Pack st, Pack t, Hits& hits, int first) const {
     const Quiver& q = q_;
     const Pack tau = 0.5 * (st + t) - st;
     const Pack gx = q.g0x + q.ux * tau, gy = q.g0y + q.uy * tau;
@@ -598,7 +616,7 @@ class Lanes {
       const bool near = (found_in[i] != 0) & (ix >= 0) & (jx >= 0) & (ix - jx <= 1) & (jx - ix <= 1) & (iy - jy <= 1) &
                         (jy - iy <= 1);
       auto inside = [&](long x, long y) { return cells.cell[near ? y * cells.nx + x : 0] == 1; };  // (Classes::inside)
-      hits.midpoint_inside[i] = near & inside(ix, iy) & inside(jx, jy) & inside(ix, jy) & inside(jx, iy);
+      hits.midpoint_inside[first + i] = near & inside(ix, iy) & inside(jx, jy) & inside(ix, jy) & inside(jx, iy);
     }
   }
 
@@ -783,7 +801,7 @@ class Lanes {
   }
 
   const Walls& walls_;
-  const Wall all_;  // the walls, one per lane
+  const WallTable all_;
   const Quiver& q_;
   Windows win_;
   Pack tau_best_;
@@ -799,17 +817,23 @@ class Lanes {
 }  // namespace
 
 void first_hits(const Walls& walls, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits) {
-  const Quiver q(drive, flights);
-  const Mask live = load_mask(flights.active);
-  const Pack horizon = load(flights.tau_end);
-  auto search = [&](auto&& lanes) {
-    while (lanes.busy()) lanes.round();
-    lanes.write(hits);
-    lanes.make_states(cells, flights, hits);
-  };
-  if (walls.segments == 0) search(Lanes<Mix::arcs>(walls, q, live, horizon));
-  else if (walls.segments == walls.count) search(Lanes<Mix::segments>(walls, q, live, horizon));
-  else search(Lanes<Mix::both>(walls, q, live, horizon));
+  for (int first = 0; first < lanes; first += W) {  // (W lanes at a time)
+    const Mask live = load_mask(flights.active + first);
+    if (!any(live)) {
+      for (int i = first; i < first + W; ++i) hits.handed_back[i] = true;
+      continue;
+    }
+    const Quiver q(drive, flights, first);
+    const Pack horizon = load(flights.tau_end + first);
+    auto search = [&](auto&& lanes) {
+      while (lanes.busy()) lanes.round();
+      lanes.write(hits, first);
+      lanes.make_states(cells, flights, hits, first);
+    };
+    if (walls.segments == 0) search(Lanes<Mix::arcs>(walls, q, live, horizon));
+    else if (walls.segments == walls.count) search(Lanes<Mix::segments>(walls, q, live, horizon));
+    else search(Lanes<Mix::both>(walls, q, live, horizon));
+  }
 }
 
 #undef LANES

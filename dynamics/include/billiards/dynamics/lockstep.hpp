@@ -11,10 +11,11 @@
 // (a guide that creeps or stands still, a window where the sign of f' is uncertain, an
 // iteration that stalls, a phase beyond the fast sine) is handed back to the scalar search.
 //
-// The kernel is written once over packs of sixteen lanes and compiled by Google Highway for each
-// SIMD target (SSE4, AVX2 and AVX-512 on x86-64, and `generic`, plain C++, anywhere),
-// one chosen at run time: each holds the lanes in its own registers and performs the same
-// operations, so every target finds the same collisions as the scalar search.
+// The kernel is written once over packs of lanes and compiled by Google Highway for each SIMD
+// target (SSE4, AVX2 and AVX-512 on x86-64, and `generic`, plain C++, anywhere), one chosen at
+// run time: each holds the lanes in its own registers (sixteen on AVX-512, eight elsewhere)
+// and performs the same operations, so every target finds the same collisions as the scalar
+// search.
 #pragma once
 
 #include "billiards/dynamics/collision.hpp"

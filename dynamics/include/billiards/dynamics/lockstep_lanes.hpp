@@ -11,11 +11,12 @@ namespace billiards::dynamics {
 
 namespace lockstep {
 
-/// Particles searched together, one per lane, and the most walls a table searched in lock step
-/// may have (a table's walls fit in a lane's vectors, where each lane picks its own).  (Sixteen
-/// lanes fill two AVX-512 registers, four AVX2 or eight SSE4 registers, whose independent
-/// operations interleave and hide each other's latency; more lanes only lengthen the rounds in
-/// which finished lanes wait for the rest.)
+/// Particles a call of the kernel searches, and the most walls a table searched in lock step
+/// may have (a table's walls fit in vectors, where each lane picks its own).  (The kernel
+/// holds sixteen lanes in two AVX-512 registers, whose independent operations interleave and
+/// hide each other's latency, and searches the sixteen particles eight at a time on narrower
+/// targets, whose registers sixteen lanes would overflow; more lanes only lengthen the rounds
+/// in which finished lanes wait for the rest.)
 inline constexpr int lanes = 16;
 inline constexpr int max_walls = 16;
 
