@@ -526,9 +526,8 @@ LANES ContactLanes<Pack> sel(Mask m, const ContactLanes<Pack>& a, const ContactL
 template <Mix table>
 class Lanes {
  public:
-  Lanes(const Walls& walls, const Quiver& q, Mask live, Pack horizon)
-      : walls_(walls),
-        all_(walls, table), q_(q), tau_best_(horizon), cur_(walls, 0) {
+  Lanes(const Walls& walls, const WallTable& all, const Quiver& q, Mask live, Pack horizon)
+      : walls_(walls), all_(all), q_(q), tau_best_(horizon), cur_(walls, 0) {
     handed_back_ = ~live | ~(q.numbers.uu > 0) | q.creeping;  // (a guide standing still: the scalar search)
     choosing_ = ~handed_back_;
     for (int w = 0; w < walls.count; ++w) wall_windows(q, walls, horizon, choosing_, win_, w);
@@ -801,7 +800,7 @@ class Lanes {
   }
 
   const Walls& walls_;
-  const WallTable all_;
+  const WallTable& all_;
   const Quiver& q_;
   Windows win_;
   Pack tau_best_;
@@ -817,23 +816,25 @@ class Lanes {
 }  // namespace
 
 void first_hits(const Walls& walls, const Drive& drive, const Cells& cells, const Flights& flights, Hits& hits) {
-  for (int first = 0; first < lanes; first += W) {  // (W lanes at a time)
-    const Mask live = load_mask(flights.active + first);
-    if (!any(live)) {
-      for (int i = first; i < first + W; ++i) hits.handed_back[i] = true;
-      continue;
+  // The table's walls loaded once, then the flights W lanes at a time.
+  auto search = [&]<Mix mix>() {
+    const WallTable all(walls, mix);
+    for (int first = 0; first < lanes; first += W) {
+      const Mask live = load_mask(flights.active + first);
+      if (!any(live)) {
+        for (int i = first; i < first + W; ++i) hits.handed_back[i] = true;
+        continue;
+      }
+      const Quiver q(drive, flights, first);
+      Lanes<mix> part(walls, all, q, live, load(flights.tau_end + first));
+      while (part.busy()) part.round();
+      part.write(hits, first);
+      part.make_states(cells, flights, hits, first);
     }
-    const Quiver q(drive, flights, first);
-    const Pack horizon = load(flights.tau_end + first);
-    auto search = [&](auto&& lanes) {
-      while (lanes.busy()) lanes.round();
-      lanes.write(hits, first);
-      lanes.make_states(cells, flights, hits, first);
-    };
-    if (walls.segments == 0) search(Lanes<Mix::arcs>(walls, q, live, horizon));
-    else if (walls.segments == walls.count) search(Lanes<Mix::segments>(walls, q, live, horizon));
-    else search(Lanes<Mix::both>(walls, q, live, horizon));
-  }
+  };
+  if (walls.segments == 0) search.template operator()<Mix::arcs>();
+  else if (walls.segments == walls.count) search.template operator()<Mix::segments>();
+  else search.template operator()<Mix::both>();
 }
 
 #undef LANES
