@@ -8,6 +8,7 @@
 #include "billiards/geometry3/shape3_file.hpp"
 
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -49,7 +50,7 @@ TEST_CASE("closed forms of the bundled 3-D shapes") {
   check(measures("sinai3"), 1 - 4 * pi * R * R * R / 3, 6 + 4 * pi * R * R, (2 + 4 * pi * R * R / 3) * I);
   // Octahedron |x|+|y|+|z| ≤ 1 from its 8 half-spaces: the faces are computed by clipping.
   check(measures("octahedron"), 4.0 / 3, 4 * std::sqrt(3.0), 4 * std::sqrt(3.0) / 3 * I);
-  // L-prism from an OFF file with non-convex hexagonal faces (triangulated by CGAL).
+  // L-prism from an OFF file with non-convex hexagonal faces (triangulated when read).
   check(measures("l-prism"), 6, 22, Eigen::Vector3d(8, 8, 6).asDiagonal().toDenseMatrix());
   const auto b = measures("l-prism");
   CHECK(b.bbox_lo == Eigen::Vector3d(0, 0, 0));
@@ -164,6 +165,47 @@ TEST_CASE("the same cube read from OFF, OBJ and STL") {
   }
 }
 
+/// A prism of height h over a star of 2n corners (radii 1 and r, alternating) whose axis is
+/// coordinate `axis`, as OFF: two non-convex 2n-gons and 2n quadrilaterals, counter-clockwise
+/// seen from outside.
+std::string star_prism(int n, double r, double h, int axis) {
+  std::string off = fmt::format("OFF\n{} {} 0\n", 4 * n, 2 * n + 2);
+  for (const double z : {0.0, h})
+    for (int k = 0; k < 2 * n; ++k) {
+      const double rho = k % 2 ? r : 1, x = rho * std::cos(pi * k / n), y = rho * std::sin(pi * k / n);
+      Vec3 q;
+      q[axis] = z, q[(axis + 1) % 3] = x, q[(axis + 2) % 3] = y;  // (a cyclic permutation: turns kept)
+      off += fmt::format("{:.17g} {:.17g} {:.17g}\n", q.x(), q.y(), q.z());
+    }
+  std::string bottom = std::to_string(2 * n), top = bottom;
+  for (int k = 0; k < 2 * n; ++k) bottom += " " + std::to_string(2 * n - 1 - k), top += " " + std::to_string(2 * n + k);
+  off += bottom + "\n" + top + "\n";
+  for (int k = 0; k < 2 * n; ++k) {
+    const int next = (k + 1) % (2 * n);
+    off += fmt::format("4 {} {} {} {}\n", k, next, next + 2 * n, k + 2 * n);
+  }
+  return off;
+}
+
+TEST_CASE("polygon faces are triangulated: star prisms along each axis have the closed-form V and S") {
+  const int n = 7;
+  const double r = 0.4, h = 1.5;
+  // The star: 2n triangles (centre, corner, next corner) of sides 1 and r at angle π/n.
+  const double area = 2 * n * 0.5 * r * std::sin(pi / n);
+  const double perimeter = 2 * n * std::sqrt(1 + r * r - 2 * r * std::cos(pi / n));
+  for (int axis = 0; axis < 3; ++axis) {
+    INFO("axis " << axis);
+    Folder f;
+    f.write("m.off", star_prism(n, r, h, axis));
+    const auto s = parse_shape3("dimension: 3\nboundary:\n  mesh: m.off\n", (f.dir / "s.yaml").string());
+    // Each 2n-gon in 2n − 2 triangles, each quadrilateral in 2.
+    CHECK(std::get<TriangleMesh>(s.region.outer).triangles.size() == std::size_t(2 * (2 * n - 2) + 4 * n));
+    const auto m = measures_of(s.region);
+    CHECK(close(m.volume, area * h, 1e-13));
+    CHECK(close(m.surface, 2 * area + perimeter * h, 1e-13));
+  }
+}
+
 /// The unit cube's OFF with a cube [1/4, 3/4]³ inside it, its faces reversed or not.
 std::string cube_with_cavity(bool cavity_reversed) {
   std::string off = "OFF\n16 24 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
@@ -207,6 +249,18 @@ TEST_CASE("invalid meshes are rejected with the reason") {
   mesh_rejected("OFF\n9 13 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n0.5 -1 -1\n" + cube_faces + "3 0 1 8\n",
                 "not manifold");
   mesh_rejected("OFF\n3 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 1 2\n", "not closed");
+  // The L-prism's top hexagon with two corners moved so that its edges cross (a fuzz finding:
+  // CGAL's triangulation of it dereferenced a null pointer).
+  std::string crossing = read_file(shapes3 + "l-prism.off");
+  for (const auto& [from, to] : {std::pair{"\n2 1 2\n", "\n0 -1 2\n"}, std::pair{"\n1 2 2\n", "\n1 -2 2\n"}}) {
+    REQUIRE(crossing.find(from) != std::string::npos);
+    crossing.replace(crossing.find(from), std::strlen(from), to);
+  }
+  mesh_rejected(crossing, "face 1 (counting from 0) cannot be triangulated: seen along its normal, it crosses itself");
+  // Two copies of a quadrilateral, back to back: each is cut along its short diagonal, which
+  // four triangles then share.
+  mesh_rejected("OFF\n4 2 0\n0 0 0\n1 -0.3 0\n2 0 0\n1 0.3 0\n4 0 1 2 3\n4 3 2 1 0\n",
+                "with its faces triangulated, not manifold: the edge between vertices 1 and 3 is shared by 4 faces");
   mesh_rejected("garbage", "cannot read");
   // Headers announcing more than the file holds are refused before anything is allocated for them.
   mesh_rejected("OFF\n1000000000 2000000000 0\n0 0 0\n", "its header announces 1e+09 vertices and 2e+09 faces, more than its");

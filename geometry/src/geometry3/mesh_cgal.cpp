@@ -9,6 +9,7 @@
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -16,8 +17,9 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
-#include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
+#include <CGAL/Polygon_2.h>
 #include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -30,7 +32,10 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <queue>
+#include <set>
 #include <string_view>
+#include <variant>
 
 namespace billiards::geometry3 {
 
@@ -65,6 +70,78 @@ std::string why_not_manifold(const Polygons& polygons) {
              " are inconsistently oriented (both run from vertex " + std::to_string(e.first) +
              " to " + std::to_string(e.second) + ")";
   return "not manifold: a vertex joins two sheets of the surface";
+}
+
+/// A polygon's vertices seen along the axis nearest its normal (Newell's): dropping a
+/// coordinate is exact, so what the exact predicates decide of the projection holds of the
+/// file's numbers.
+CGAL::Polygon_2<K> projected(const std::vector<Point>& points, const std::vector<std::size_t>& face) {
+  Vec3 normal = Vec3::Zero();
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    const Point &a = points[face[k]], &b = points[face[(k + 1) % face.size()]];
+    normal += Vec3((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()), (a.x() - b.x()) * (a.y() + b.y()));
+  }
+  int drop = 0;
+  normal.cwiseAbs().maxCoeff(&drop);
+  CGAL::Polygon_2<K> out;
+  for (const std::size_t v : face) {
+    const Point& p = points[v];
+    out.push_back(K::Point_2(p[(drop + 1) % 3], p[(drop + 2) % 3]));
+  }
+  return out;
+}
+
+/// The triangles of a face of more than three vertices, each turning as the face does: the
+/// constrained Delaunay triangulation of its projection (`projected`) with its edges as
+/// constraints, the triangles inside them; nothing when the projection is not a simple
+/// polygon (the face crosses itself, repeats a vertex, or is flat seen along its normal).
+/// (CGAL's triangulate_faces, given a face that crosses itself, dereferenced a null pointer: a
+/// fuzz finding.)
+std::optional<Polygons> triangles_of(const std::vector<Point>& points, const std::vector<std::size_t>& face) {
+  const CGAL::Polygon_2<K> polygon = projected(points, face);
+  if (!polygon.is_simple()) return std::nullopt;
+  using Vertex = CGAL::Triangulation_vertex_base_with_info_2<std::size_t, K>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vertex, CGAL::Constrained_triangulation_face_base_2<K>>;
+  using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::No_constraint_intersection_tag>;
+  Cdt cdt;
+  std::vector<Cdt::Vertex_handle> corner;
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    corner.push_back(cdt.insert(polygon[int(k)]));
+    corner.back()->info() = face[k];
+  }
+  for (std::size_t k = 0; k < face.size(); ++k) cdt.insert_constraint(corner[k], corner[(k + 1) % face.size()]);
+  // Outside: the faces reached from the infinite one without crossing a constraint.
+  std::set<Cdt::Face_handle> outside{cdt.infinite_face()};
+  std::queue<Cdt::Face_handle> reached;
+  reached.push(cdt.infinite_face());
+  for (; !reached.empty(); reached.pop())
+    for (int i = 0; i < 3; ++i) {
+      const Cdt::Face_handle next = reached.front()->neighbor(i);
+      if (!cdt.is_constrained({reached.front(), i}) && outside.insert(next).second) reached.push(next);
+    }
+  const bool reversed = polygon.orientation() == CGAL::CLOCKWISE;  // (the triangulation's faces turn counter-clockwise)
+  Polygons out;
+  for (const Cdt::Face_handle f : cdt.finite_face_handles())
+    if (!outside.count(f)) {
+      out.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+      if (reversed) std::swap(out.back()[1], out.back()[2]);
+    }
+  return out;
+}
+
+/// The faces as triangles (`triangles_of`), or the number of the first that cannot be.
+std::variant<Polygons, std::size_t> triangulated(const std::vector<Point>& points, const Polygons& faces) {
+  Polygons out;
+  for (std::size_t f = 0; f < faces.size(); ++f) {
+    if (faces[f].size() == 3) {
+      out.push_back(faces[f]);
+      continue;
+    }
+    const auto triangles = triangles_of(points, faces[f]);
+    if (!triangles) return f;
+    out.insert(out.end(), triangles->begin(), triangles->end());
+  }
+  return out;
 }
 
 Mesh to_cgal(const TriangleMesh& m) {
@@ -123,12 +200,16 @@ double MeshLocator::area() const { return PMP::area(impl_->mesh); }
 template <class Fail>
 TriangleMesh checked_mesh(const std::string& path, const std::vector<Point>& points, const Polygons& polygons,
                           const Fail& fail) {
+  const auto soup = triangulated(points, polygons);
+  if (const auto* f = std::get_if<std::size_t>(&soup))
+    return fail("face " + std::to_string(*f) +
+                " (counting from 0) cannot be triangulated: seen along its normal, it crosses itself, repeats a vertex or is flat");
+  const Polygons& triangles = std::get<Polygons>(soup);
+  // (A diagonal of a face may be an edge the surface has already.)
+  if (!PMP::is_polygon_soup_a_polygon_mesh(triangles))
+    return fail("with its faces triangulated, " + why_not_manifold(triangles));
   Mesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
-  const std::string untriangulable =
-      "a face with more than 3 vertices cannot be triangulated: it is not planar, crosses itself or repeats a vertex";
-  if (!CGAL::is_triangle_mesh(mesh) && (!PMP::triangulate_faces(mesh) || !CGAL::is_triangle_mesh(mesh)))
-    return fail(untriangulable);
+  PMP::polygon_soup_to_polygon_mesh(points, triangles, mesh);
   if (!CGAL::is_valid_polygon_mesh(mesh)) return fail("not a valid surface: its faces do not join into one");
   if (!CGAL::is_closed(mesh)) return fail("not closed (it has boundary edges): it does not bound a region");
   for (auto f : mesh.faces())
