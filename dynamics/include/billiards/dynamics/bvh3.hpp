@@ -8,6 +8,10 @@
 #include <bit>
 #include <vector>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 namespace billiards::dynamics {
 
 using geometry3::Vec3;
@@ -66,6 +70,18 @@ namespace detail {
 /// registers by default).
 using DoublePair = double __attribute__((vector_size(2 * sizeof(double))));
 
+/// Two consecutive floats as doubles (exact), converted by one instruction where SSE2 has it
+/// (compilers convert a vector of two floats one float at a time).
+inline DoublePair widened(const float* p) {
+#ifdef __SSE2__
+  double both;
+  __builtin_memcpy(&both, p, sizeof both);
+  return DoublePair(_mm_cvtps_pd(_mm_castpd_ps(_mm_set_sd(both))));
+#else
+  return DoublePair{p[0], p[1]};
+#endif
+}
+
 /// The slab test of one ray against the boxes of a node's children, in doubles (a float
 /// converts exactly).  The side of each slab the ray enters through is chosen by the sign of
 /// its direction, so that an empty box is never entered; a zero component is replaced by a
@@ -89,8 +105,8 @@ struct BvhRay {
       DoublePair in = {0, 0}, out = {tau_max, tau_max};
       for (int k = 0; k < 3; ++k) {
         const float *a = n.bound[near[k]][k] + i, *b = n.bound[1 - near[k]][k] + i;
-        const DoublePair ta = (DoublePair{a[0], a[1]} - grow[k] - x[k]) * inv[k];
-        const DoublePair tb = (DoublePair{b[0], b[1]} + grow[k] - x[k]) * inv[k];
+        const DoublePair ta = (widened(a) - grow[k] - x[k]) * inv[k];
+        const DoublePair tb = (widened(b) + grow[k] - x[k]) * inv[k];
         in = in < ta ? ta : in;
         out = tb < out ? tb : out;
       }
