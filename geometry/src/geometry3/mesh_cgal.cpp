@@ -12,15 +12,15 @@
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_2.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
-#include <CGAL/Polygon_2.h>
 #include <CGAL/Side_of_triangle_mesh.h>
-#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/boost/graph/helpers.h>
 
 #include <fmt/format.h>
@@ -95,8 +95,8 @@ CGAL::Polygon_2<K> projected(const std::vector<Point>& points, const std::vector
 /// constrained Delaunay triangulation of its projection (`projected`) with its edges as
 /// constraints, the triangles inside them; nothing when the projection is not a simple
 /// polygon (the face crosses itself, repeats a vertex, or is flat seen along its normal).
-/// (CGAL's triangulate_faces, given a face that crosses itself, dereferenced a null pointer: a
-/// fuzz finding.)
+/// (Not CGAL's triangulate_faces: given a face that crosses itself, it dereferences a null
+/// pointer.)
 std::optional<Polygons> triangles_of(const std::vector<Point>& points, const std::vector<std::size_t>& face) {
   const CGAL::Polygon_2<K> polygon = projected(points, face);
   if (!polygon.is_simple()) return std::nullopt;
