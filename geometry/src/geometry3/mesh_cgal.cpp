@@ -205,8 +205,9 @@ TriangleMesh checked_mesh(const std::string& path, const std::vector<Point>& poi
     return fail("face " + std::to_string(*f) +
                 " (counting from 0) cannot be triangulated: seen along its normal, it crosses itself, repeats a vertex or is flat");
   const Polygons& triangles = std::get<Polygons>(soup);
-  // (A diagonal of a face may be an edge the surface has already.)
-  if (!PMP::is_polygon_soup_a_polygon_mesh(triangles))
+  // A diagonal of a face may be an edge the surface has already (with no face cut, the soup
+  // is the one read_mesh has checked).
+  if (triangles.size() != polygons.size() && !PMP::is_polygon_soup_a_polygon_mesh(triangles))
     return fail("with its faces triangulated, " + why_not_manifold(triangles));
   Mesh mesh;
   PMP::polygon_soup_to_polygon_mesh(points, triangles, mesh);
