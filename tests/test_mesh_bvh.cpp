@@ -2,7 +2,8 @@
 // triangle tried in turn, bit for bit, for straight rays (from inside the mesh, from the walls
 // after a bounce, and aimed exactly at vertices and edges, where the float boxes are tightest),
 // for helices (boxes grown by the cyclotron radius) and for driven flights (grown by the
-// oscillation's amplitude); and the walls keep the mesh's own numbering.
+// oscillation's amplitude); and the walls keep the mesh's own numbering.  The slab test in
+// SIMD lanes enters the scalar test's children at its times, bit for bit, on every target.
 #include "billiards/dynamics/magnetic_flight.hpp"
 #include "billiards/dynamics/table3.hpp"
 #include "billiards/geometry3/shape3_file.hpp"
@@ -10,6 +11,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <string>
 
 using namespace billiards;
@@ -150,5 +153,80 @@ TEST_CASE("a mesh's triangles are numbered in the mesh's order (Table3::piece_of
   for (int i = 0; i < int(table.triangles().size()); ++i) {
     const auto& face = mesh.triangles[std::size_t(table.piece_of({wall_kind3::triangle, i}))];
     for (int k = 0; k < 3; ++k) REQUIRE(table.triangles()[i].p[k] == mesh.vertices[face[k]]);
+  }
+}
+
+namespace {
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// A node of random boxes around the unit cube, some of them empty as the build leaves unused
+/// children (lo = +∞, hi = −∞), some flat.
+Bvh::Node random_node(ParticleRng& rng) {
+  Bvh::Node n{};
+  for (int i = 0; i < Bvh::width; ++i) {
+    const bool empty = rng.uniform() < 0.2, flat = rng.uniform() < 0.1;
+    for (int k = 0; k < 3; ++k) {
+      const double lo = 2 * rng.uniform() - 0.5, hi = flat && k == 0 ? lo : lo + rng.uniform();
+      n.bound[0][k][i] = empty ? std::numeric_limits<float>::infinity() : float(lo);
+      n.bound[1][k][i] = empty ? -std::numeric_limits<float>::infinity() : float(hi);
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("the slab test in lanes enters the children the scalar test enters, at the same times, on every target") {
+  ParticleRng rng(10, 0);
+  int compared = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Bvh::Node node = random_node(rng);
+    const Vec3 origin(2 * rng.uniform() - 0.5, 2 * rng.uniform() - 0.5, 2 * rng.uniform() - 0.5);
+    Vec3 dir = random_direction(rng);
+    if (trial % 7 == 0) dir[trial % 3] = 0;  // (a slab the ray never crosses)
+    const double pad = trial % 2 ? 0.0 : 0.01 * rng.uniform();
+    const double tau_max = trial % 3 ? std::numeric_limits<double>::infinity() : 3 * rng.uniform();
+    const detail::BvhRay ray(origin, dir, pad);
+    double expected[Bvh::width];
+    const unsigned mask = ray.enter(node, tau_max, expected);
+    for (const auto& target : simd::runnable_targets()) {
+      INFO(target.name << ", trial " << trial);
+      const auto slab_test = bvh_lanes::kernel_of(target.bit);
+      REQUIRE(slab_test);
+      double t_in[Bvh::width];
+      REQUIRE(slab_test(&node.bound[0][0][0], ray, tau_max, t_in) == mask);
+      for (int i = 0; i < Bvh::width; ++i) REQUIRE(same_bits(t_in[i], expected[i]));
+      ++compared;
+    }
+  }
+  CHECK(compared == 20000 * int(simd::runnable_targets().size()));
+}
+
+TEST_CASE("free, driven and magnetic flights in a mesh hit the same walls at the same times on every target") {
+  const auto shape = mesh_shape("bumpy-100k");
+  const Table3 scalar(shape.region, simd::scalar);
+  ParticleRng rng(11, 0);
+  const FreeFlight3 free;
+  const PeriodicDriveFlight3 driven{10 * random_direction(rng), 320 * geometry::pi, 0.3};
+  const MagneticFlight3 magnetic{random_direction(rng) / 0.1};
+  for (const auto& target : simd::runnable_targets()) {
+    INFO(target.name);
+    const Table3 table(shape.region, target.bit);
+    ParticleRng start(12, 0);
+    int compared = 0;
+    const auto follow = [&](const auto& flight, auto s, int bounces) {
+      for (int k = 0; k < bounces; ++k, ++compared) {
+        const auto hit = table.collision(flight, s, s.t + 20), expected = scalar.collision(flight, s, s.t + 20);
+        REQUIRE(hit.found());
+        REQUIRE(hit.wall == expected.wall);
+        REQUIRE(same_bits(hit.t, expected.t));
+        bounce(flight, s, hit);
+      }
+    };
+    for (int particle = 0; particle < 20; ++particle) follow(free, sample_microcanonical(table, 1.0, start), 100);
+    follow(driven, driven.start(sample_microcanonical(table, 1.0, start)), 20);
+    follow(magnetic, sample_microcanonical(table, 1.0, start), 10);
+    CHECK(compared == 2030);
   }
 }

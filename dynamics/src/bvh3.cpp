@@ -50,7 +50,7 @@ struct Bvh::Split {
   int left = -1, right = -1;  // children in the tree; −1 for a leaf
 };
 
-Bvh::Bvh(const std::vector<Box>& boxes, double pad) {
+Bvh::Bvh(const std::vector<Box>& boxes, double pad, bvh_lanes::Kernel slab_test) : slab_test_(slab_test) {
   order_.resize(boxes.size());
   std::iota(order_.begin(), order_.end(), 0);
   if (boxes.empty()) return;

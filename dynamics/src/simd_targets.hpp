@@ -1,6 +1,6 @@
 // The SIMD targets every kernel file compiles for (lockstep_kernel.cpp, free_lanes_kernel.cpp,
-// magnetic_lanes_kernel.cpp), and that simd.cpp lists: included before Highway's headers, so
-// that all agree; and how a kernel file names its kernel for each.
+// magnetic_lanes_kernel.cpp, bvh_lanes_kernel.cpp), and that simd.cpp lists: included before
+// Highway's headers, so that all agree; and how a kernel file names its kernel for each.
 //
 // Targets left out: sizeless vectors (SVE, RVV) cannot be members of the lock-step kernel's
 // Pack; NEON's vectors have constructors that GCC 12 will not inline into a Pack's implicit one

@@ -12,7 +12,7 @@ using namespace geometry3;
 
 // ---------------------------------------------------------------- table
 
-Table3::BasicTable(const Region3& region) : region_(region) {
+Table3::BasicTable(const Region3& region, std::int64_t simd_target) : region_(region) {
   const auto m = measures_of(region);
   lo_ = m.bbox_lo;
   hi_ = m.bbox_hi;
@@ -35,7 +35,7 @@ Table3::BasicTable(const Region3& region) : region_(region) {
   boxes.reserve(triangles.size());
   for (const TriangleWall& w : triangles)
     boxes.push_back({w.p[0].cwiseMin(w.p[1]).cwiseMin(w.p[2]), w.p[0].cwiseMax(w.p[1]).cwiseMax(w.p[2])});
-  bvh_ = Bvh(boxes, 4 * slack);
+  bvh_ = Bvh(boxes, 4 * slack, bvh_lanes::kernel_of(simd_target));
   // Store the triangles in the BVH's leaf order: a leaf's triangles are then contiguous.
   std::vector<TriangleWall> sorted;
   sorted.reserve(triangles.size());

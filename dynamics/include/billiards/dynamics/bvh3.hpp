@@ -3,6 +3,7 @@
 // stored as floats rounded outward, walked nearest box first.
 #pragma once
 
+#include "billiards/dynamics/bvh_lanes.hpp"
 #include "billiards/geometry3/region3.hpp"
 
 #include <bit>
@@ -21,7 +22,7 @@ using geometry3::Vec3;
 /// the padded box in doubles.  A walk grows them again by its own pad (a tube's radius).
 class Bvh {
  public:
-  static constexpr int width = 8;     // children of a node
+  static constexpr int width = bvh_lanes::width;  // children of a node
   static constexpr int max_leaf = 8;  // triangles of a leaf
   struct Box {
     Vec3 lo, hi;
@@ -35,8 +36,9 @@ class Bvh {
   };
 
   Bvh() = default;
-  /// Over one box per triangle, each grown by `pad`.
-  Bvh(const std::vector<Box>& boxes, double pad);
+  /// Over one box per triangle, each grown by `pad`; walked with the slab test of `slab_test`
+  /// (bvh_lanes.hpp), or the scalar one where it is null.
+  Bvh(const std::vector<Box>& boxes, double pad, bvh_lanes::Kernel slab_test);
   /// The triangles in leaf order: position i holds triangle order()[i].
   const std::vector<int>& order() const { return order_; }
 
@@ -61,6 +63,7 @@ class Bvh {
   static constexpr int max_depth = 64, stack_size = (width - 1) * max_depth + 1;
   std::vector<Node> nodes_;
   std::vector<int> order_;
+  bvh_lanes::Kernel slab_test_ = nullptr;
 };
 
 namespace detail {
@@ -83,16 +86,15 @@ inline DoublePair widened(const float* p) {
 }
 
 /// The slab test of one ray against the boxes of a node's children, in doubles (a float
-/// converts exactly).  The side of each slab the ray enters through is chosen by the sign of
+/// converts exactly), two children at a time: the scalar test, which bvh_lanes' kernel repeats
+/// in the lanes of each SIMD target.  The side of each slab the ray enters through is chosen by the sign of
 /// its direction, so that an empty box is never entered; a zero component is replaced by a
 /// tiny one of the same role: the slab then spans everything (origin between the planes) or
 /// nothing, with no 0·∞.
-struct BvhRay {
-  Vec3 x, inv;
-  int near[3];     // 0: the ray enters the slab through lo, 1: through hi
-  double grow[3];  // the pad, signed to grow the box on the near side (and, negated, the far)
-  BvhRay(const Vec3& origin, const Vec3& dir, double pad) : x(origin) {
+struct BvhRay : bvh_lanes::Ray {
+  BvhRay(const Vec3& origin, const Vec3& dir, double pad) {
     for (int k = 0; k < 3; ++k) {
+      x[k] = origin[k];
       inv[k] = 1 / (dir[k] != 0 ? dir[k] : 1e-300);
       near[k] = inv[k] < 0;
       grow[k] = near[k] ? -pad : pad;
@@ -144,7 +146,9 @@ void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, 
       // Push the children entered, farthest first (insertion by t_in), and search the nearest
       // next, so that the bound shrinks early; the others are fetched meanwhile.
       const int bottom = top;
-      for (unsigned mask = ray.enter(node, tau_max, t_in); mask; mask &= mask - 1) {
+      const unsigned entered =
+          slab_test_ ? slab_test_(&node.bound[0][0][0], ray, tau_max, t_in) : ray.enter(node, tau_max, t_in);
+      for (unsigned mask = entered; mask; mask &= mask - 1) {
         const int i = std::countr_zero(mask);
         if (const int c = node.child[i]; c >= 0) prefetch(nodes_[c]);
         else fetch(~c / max_leaf, ~c % max_leaf + 1);

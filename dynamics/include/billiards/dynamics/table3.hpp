@@ -8,6 +8,7 @@
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
 #include "billiards/dynamics/random.hpp"
+#include "billiards/dynamics/simd.hpp"
 #include "billiards/dynamics/table.hpp"
 #include "billiards/dynamics/wall_set.hpp"
 #include "billiards/dynamics/walls3.hpp"
@@ -44,9 +45,10 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
                 std::is_same_v<Kind<wall_kind3::sphere>, SphereWall>);
 
   /// Keeps a reference to `region` (for point location), which must outlive the table: a
-  /// temporary region does not compile.
-  explicit BasicTable(const geometry3::Region3& region);
-  BasicTable(geometry3::Region3&&) = delete;
+  /// temporary region does not compile.  The BVH's slab test runs in the lanes of
+  /// `simd_target` (bvh_lanes.hpp; simd::scalar: none), the same children entered on any.
+  explicit BasicTable(const geometry3::Region3& region, std::int64_t simd_target = simd::chosen_target());
+  BasicTable(geometry3::Region3&&, std::int64_t = simd::scalar) = delete;
 
   /// The first wall the flight (FreeFlight3, PeriodicDriveFlight3, MagneticFlight3 or
   /// MagneticDriveFlight3) from `s` leaves the region through, before `t_end`, with the
