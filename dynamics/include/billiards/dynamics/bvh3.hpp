@@ -68,28 +68,40 @@ class Bvh {
 
 namespace detail {
 
-/// Two doubles in one SSE2 register (GCC's and Clang's vector extension): the project's flags
-/// leave the vectorizing of the children's slab tests to the code (no SLP vectorizer, no wider
-/// registers by default).
-using DoublePair = double __attribute__((vector_size(2 * sizeof(double))));
-
-/// Two consecutive floats as doubles (exact), converted by one instruction where SSE2 has it
-/// (compilers convert a vector of two floats one float at a time).
-inline DoublePair widened(const float* p) {
+/// Two doubles in one SSE2 register (GCC's and Clang's vector extension): the slab test's
+/// lanes without a SIMD target (the project's flags leave the vectorizing to the code: no SLP
+/// vectorizer, no wider registers by default).
+struct PairLanes {
+  using Num = double __attribute__((vector_size(2 * sizeof(double))));
+  static constexpr int lanes = 2;
+  static Num splat(double x) { return Num{x, x}; }
+  /// (One instruction where SSE2 has it: compilers convert a vector of two floats one at a time.)
+  static Num widened(const float* p) {
 #ifdef __SSE2__
-  double both;
-  __builtin_memcpy(&both, p, sizeof both);
-  return DoublePair(_mm_cvtps_pd(_mm_castpd_ps(_mm_set_sd(both))));
+    double both;
+    __builtin_memcpy(&both, p, sizeof both);
+    return Num(_mm_cvtps_pd(_mm_castpd_ps(_mm_set_sd(both))));
 #else
-  return DoublePair{p[0], p[1]};
+    return Num{p[0], p[1]};
 #endif
-}
+  }
+  static Num later(Num a, Num b) { return a < b ? b : a; }
+  static Num earlier(Num a, Num b) { return b < a ? b : a; }
+  static void store(Num v, double* p) { __builtin_memcpy(p, &v, sizeof v); }
+  static unsigned entered(Num in, Num out) {
+#ifdef __SSE2__
+    return unsigned(__builtin_ia32_movmskpd(Num(in <= out)));  // (the sign bits)
+#else
+    const auto m = in <= out;
+    return unsigned(m[0] & 1) | unsigned(m[1] & 1) << 1;
+#endif
+  }
+};
 
-/// The slab test of one ray against the boxes of a node's children, in doubles (a float
-/// converts exactly), two children at a time: the scalar test, which bvh_lanes' kernel repeats
-/// in the lanes of each SIMD target.  The side of each slab the ray enters through is chosen by the sign of
-/// its direction, so that an empty box is never entered; a zero component is replaced by a
-/// tiny one of the same role: the slab then spans everything (origin between the planes) or
+#include "billiards/dynamics/slab_test-inl.hpp"
+
+/// A ray as the slab test reads it; a zero component of its direction is replaced by a tiny
+/// one of the same role: the slab then spans everything (origin between the planes) or
 /// nothing, with no 0·∞.
 struct BvhRay : bvh_lanes::Ray {
   BvhRay(const Vec3& origin, const Vec3& dir, double pad) {
@@ -99,28 +111,6 @@ struct BvhRay : bvh_lanes::Ray {
       near[k] = inv[k] < 0;
       grow[k] = near[k] ? -pad : pad;
     }
-  }
-  /// Bit i set: the ray is inside child i's box for some τ in [0, tau_max], from τ = t_in[i].
-  unsigned enter(const Bvh::Node& n, double tau_max, double (&t_in)[Bvh::width]) const {
-    unsigned mask = 0;
-    for (int i = 0; i < Bvh::width; i += 2) {
-      DoublePair in = {0, 0}, out = {tau_max, tau_max};
-      for (int k = 0; k < 3; ++k) {
-        const float *a = n.bound[near[k]][k] + i, *b = n.bound[1 - near[k]][k] + i;
-        const DoublePair ta = (widened(a) - grow[k] - x[k]) * inv[k];
-        const DoublePair tb = (widened(b) + grow[k] - x[k]) * inv[k];
-        in = in < ta ? ta : in;
-        out = tb < out ? tb : out;
-      }
-      const auto entered = in <= out;
-      __builtin_memcpy(t_in + i, &in, sizeof in);
-#ifdef __SSE2__
-      mask |= unsigned(__builtin_ia32_movmskpd(DoublePair(entered))) << i;  // (the sign bits)
-#else
-      mask |= unsigned(entered[0] & 1) << i | unsigned(entered[1] & 1) << (i + 1);
-#endif
-    }
-    return mask;
   }
 };
 
@@ -146,8 +136,9 @@ void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, 
       // Push the children entered, farthest first (insertion by t_in), and search the nearest
       // next, so that the bound shrinks early; the others are fetched meanwhile.
       const int bottom = top;
+      const float* bound = &node.bound[0][0][0];
       const unsigned entered =
-          slab_test_ ? slab_test_(&node.bound[0][0][0], ray, tau_max, t_in) : ray.enter(node, tau_max, t_in);
+          slab_test_ ? slab_test_(bound, ray, tau_max, t_in) : detail::slab_test<detail::PairLanes>(bound, ray, tau_max, t_in);
       for (unsigned mask = entered; mask; mask &= mask - 1) {
         const int i = std::countr_zero(mask);
         if (const int c = node.child[i]; c >= 0) prefetch(nodes_[c]);
