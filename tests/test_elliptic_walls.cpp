@@ -114,8 +114,11 @@ TEST_CASE("forced flights' exit times through elliptic arcs equal a brute-force 
       };
       const double h = std::min(2 * pi / omega / 256, 1e-3);
       const auto s = drive.start(s0);
-      check(brute_force::first_upward_root(driven, h, 3.0), dynamics::elliptic_exit_time(drive, s, wall, 3.0),
-            [&](double t) { return drive.advance(s, t).x; }, "drive");
+      const double root = brute_force::first_upward_root(driven, h, 3.0);
+      auto at = [&](double t) { return drive.advance(s, t).x; };
+      // The mapped flight's scan, and its search in windows (DrivenScan's, which the lanes share).
+      check(root, dynamics::elliptic_exit_time(drive, s, wall, 3.0), at, "drive");
+      check(root, drive.exit_time(s, wall, 3.0), at, "drive, in windows");
       check(brute_force::first_upward_root(parabola, 1e-3, 3.0), dynamics::elliptic_exit_time(gravity, s0, wall, 3.0),
             [&](double t) { return gravity.advance(s0, t).x; }, "static force");
     }

@@ -106,28 +106,42 @@ struct Windowed {
   struct along : std::bool_constant<has_windows<W, Q>> {};
 };
 
+/// fn(gap, passes, in_span) for a wall with windows along the flight q: what
+/// scan::first_hit_in_windows' `visit` gives it.
+template <class Real, class Q, class Wall, class Fn>
+void visit_windowed(const Q& q, const Wall& wall, Fn&& fn) {
+  // A window in which the particle cannot reach the wall's span is passed unsampled.
+  auto passes = [&](const Real& start, const Real& end) {
+    return !wall.may_meet_span(q.guide(start), q.guide(end), q.delta);
+  };
+  auto in_span = [&wall](const Vec2T<Real>& x) { return wall.within_span(x); };
+  fn(wall.gap_along(q), passes, in_span);
+}
+
 /// The first hit of the flight q among the table's walls that have windows before best.t,
 /// into `best` (t and wall) and `phase`.
 template <class Real, class Q>
 void first_hit_in_windows(const BasicTable<Real>& table, const Q& q, BasicHit<Real>& best, PhaseSample<Real>& phase) {
   Real tau_best = best.t - q.s.t;
   const NumberedWalls<BasicTable<Real>, Windowed<Q>::template along> walls(table);
-  auto visit = [&](int w, auto&& fn) {
-    walls.visit(w, [&](const auto& wall) {
-      // A window in which the particle cannot reach the wall's span is passed unsampled.
-      auto passes = [&](const Real& start, const Real& end) {
-        return !wall.may_meet_span(q.guide(start), q.guide(end), q.delta);
-      };
-      auto in_span = [&wall](const Vec2T<Real>& x) { return wall.within_span(x); };
-      fn(wall.gap_along(q), passes, in_span);
-    });
-  };
+  auto visit = [&](int w, auto&& fn) { walls.visit(w, [&](const auto& wall) { visit_windowed<Real>(q, wall, fn); }); };
   int best_wall = -1;
   scan::first_hit_in_windows(walls.count(), visit, tau_best, best_wall, phase);
   if (best_wall >= 0) {
     best.t = q.s.t + tau_best;
     best.wall = walls.id(best_wall);
   }
+}
+
+/// The first hit of the flight q through one wall with windows before τ = tau_best, searched
+/// as a table's are: true, and tau_best updated, if there is one.
+template <class Real, class Q, class Wall>
+bool first_hit_in_windows(const Q& q, const Wall& wall, Real& tau_best) {
+  PhaseSample<Real> phase;
+  int hit = -1;
+  auto visit = [&](int, auto&& fn) { visit_windowed<Real>(q, wall, fn); };
+  scan::first_hit_in_windows(1, visit, tau_best, hit, phase);
+  return hit == 0;
 }
 
 }  // namespace
@@ -173,7 +187,15 @@ auto DrivenScan<Flight>::exit_time(const BasicArcWall<Real>& w, const Real& t_en
 
 template <class Flight>
 auto DrivenScan<Flight>::exit_time(const BasicEllipticArcWall<Real>& w, const Real& t_end) const -> Real {
-  return elliptic_exit_time(quiver.flight, quiver.s, w, t_end);
+  // The mapped flight through the unit arc (elliptic_exit_time), searched in its windows as a
+  // table's arcs are unless it creeps: so the lock-step search, which searches it so in lanes
+  // (LockstepTable), finds the same hit.
+  const Flight flight = mapped(quiver.flight, w);
+  const typename Flight::State s = mapped_state(quiver.s, w);
+  const DrivenScan unit = flight.scan_from(s);
+  if (unit.quiver.creeping) return unit.exit_time(w.unit, t_end);
+  Real tau = t_end - s.t;
+  return first_hit_in_windows(unit.quiver, w.unit, tau) ? Real(s.t + tau) : Real(never);
 }
 
 // ---- Quivering walls ---------------------------------------------------------------------

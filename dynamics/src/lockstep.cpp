@@ -14,30 +14,23 @@ Kernel chosen_kernel() {
 
 }  // namespace lockstep
 
-LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flight, lockstep::Kernel kernel)
-    : table_(&table), flight_(&flight), kernel_(kernel) {
-  const auto& segments = table.segments();
-  const auto& arcs = table.arcs();
-  const std::size_t count = segments.size() + arcs.size();
-  // (Elliptic arcs are searched after the lanes, as DrivenScan::first_hit searches them after
-  // the windows; a table of more walls than that searches in windows is searched wall by wall.)
-  usable_ = kernel && count > 0 && count <= std::size_t(lockstep::max_walls) &&
-            table.wall_count() <= std::size_t(scan::windows_in_time_order_walls);
-  without_windows_ = table.wall_count() > count;
-  if (!usable_) return;
-  // The drive's numbers as every flight's Quiver computes them.
+namespace {
+
+/// The drive's numbers as every flight's Quiver computes them.
+lockstep::Drive drive_of(const PeriodicDriveFlight& flight) {
   DrivenState rest;
   rest.x = rest.v = Vec2::Zero();
   const Quiver<PeriodicDriveFlight, DrivenState> q(flight, rest);
-  drive_ = {flight.omega, flight.accel.x(), flight.accel.y(), q.amp_x.x(), q.amp_x.y(), q.amp_v.x(), q.amp_v.y(),
-            q.accel_norm, q.inv_omega, q.delta};
-  const auto& classes = table.classes();
-  cells_ = {classes.origin.x(), classes.origin.y(), classes.inverse_cell.x(), classes.inverse_cell.y(),
-            classes.nx,         classes.ny,         classes.cell.data()};
-  walls_.count = int(count), walls_.segments = int(segments.size());
-  for (int i = 0; i < lockstep::max_walls; ++i) {
-    const int k = std::min(i, walls_.count - 1);  // (padding: the last wall again)
-    auto& w = walls_;
+  return {flight.omega, flight.accel.x(), flight.accel.y(), q.amp_x.x(), q.amp_x.y(), q.amp_v.x(), q.amp_v.y(),
+          q.accel_norm, q.inv_omega, q.delta};
+}
+
+/// The segments, then the arcs, field by field, padded with the last wall to max_walls.
+lockstep::Walls walls_of(const std::vector<SegmentWall>& segments, const std::vector<ArcWall>& arcs) {
+  lockstep::Walls w{};
+  w.count = int(segments.size() + arcs.size()), w.segments = int(segments.size());
+  for (int i = 0; i < lockstep::max_walls && w.count > 0; ++i) {
+    const int k = std::min(i, w.count - 1);
     w.arc[i] = k >= w.segments ? -1 : 0;
     if (k < w.segments) {
       const auto& g = segments[std::size_t(k)];
@@ -51,36 +44,89 @@ LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flig
       w.full[i] = a.full ? -1 : 0, w.half[i] = a.ccw_extent <= geometry::pi ? -1 : 0;
     }
   }
+  return w;
+}
+
+}  // namespace
+
+LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flight, lockstep::Kernel kernel)
+    : table_(&table), flight_(&flight), kernel_(kernel) {
+  const auto& segments = table.segments();
+  const auto& arcs = table.arcs();
+  // (DrivenScan::first_hit searches a table of more walls than it takes in windows wall by
+  // wall: not in lanes.)
+  usable_ = kernel && segments.size() + arcs.size() <= std::size_t(lockstep::max_walls) &&
+            table.wall_count() <= std::size_t(scan::windows_in_time_order_walls);
+  if (!usable_) return;
+  drive_ = drive_of(flight);
+  const auto& classes = table.classes();
+  cells_ = {classes.origin.x(), classes.origin.y(), classes.inverse_cell.x(), classes.inverse_cell.y(),
+            classes.nx,         classes.ny,         classes.cell.data()};
+  walls_ = walls_of(segments, arcs);
+  for (const auto& w : table.elliptic_arcs()) {
+    elliptic_.push_back({walls_of({}, {w.unit}), drive_of(mapped(flight, w))});
+    elliptic_.back().walls.make_states = false;
+  }
 }
 
 void LockstepTable::collisions(const DrivenState* const* states, const double* t_end, int n,
                                FlightHit<PeriodicDriveFlight>* hits) const {
   lockstep::Flights in{};
-  bool any = false;
+  bool scalar[lockstep::lanes];  // lanes left to the scalar search
   for (int i = 0; i < n; ++i) {
     const DrivenState& s = *states[i];
-    if (!(t_end[i] < never)) continue;  // (without a horizon: the scalar search)
-    any = true;
+    // (Without a horizon: the scalar search.)
+    scalar[i] = !(t_end[i] < never);
+    if (scalar[i]) continue;
     in.active[i] = -1;
     in.sx[i] = s.x.x(), in.sy[i] = s.x.y(), in.vx[i] = s.v.x(), in.vy[i] = s.v.y();
     in.t[i] = s.t, in.phase_hi[i] = s.phase.hi, in.phase_lo[i] = s.phase.lo;
     in.sin_phase[i] = s.sin_phase, in.cos_phase[i] = s.cos_phase;
     in.tau_end[i] = t_end[i] - s.t;
+    hits[i] = {};
+    hits[i].t = t_end[i];
   }
+  // As DrivenScan::first_hit and `collision` make the hit: the segments' and arcs' windows (the
+  // kernel made the hit's state, or left it to be made here)...
   lockstep::Hits out;
-  if (any) kernel_(walls_, drive_, cells_, in, out);
+  auto lanes_left = [&] { return std::find(scalar, scalar + n, false) != scalar + n; };
+  if (walls_.count > 0 && lanes_left()) {
+    kernel_(walls_, drive_, cells_, in, out);
+    for (int i = 0; i < n; ++i) {
+      scalar[i] |= out.handed_back[i];
+      if (!scalar[i] && out.wall[i] >= 0) lane_hit(*states[i], out, i, hits[i]);
+    }
+  }
+  // ...then each elliptic arc up to the best hit so far, as DrivenScan::exit_time searches it:
+  // the mapped flight through the unit arc, in its windows (a lane handed back there: that
+  // arc's scalar search).
+  bool elliptic[lockstep::lanes] = {};
+  for (std::size_t k = 0; k < elliptic_.size(); ++k) {
+    const auto& w = table_->elliptic_arcs()[k];
+    if (!lanes_left()) break;
+    lockstep::Flights m = in;
+    for (int i = 0; i < n; ++i) {
+      m.active[i] = scalar[i] ? 0 : -1;
+      if (scalar[i]) continue;
+      const DrivenState s = mapped_state(*states[i], w);
+      m.sx[i] = s.x.x(), m.sy[i] = s.x.y(), m.vx[i] = s.v.x(), m.vy[i] = s.v.y();
+      m.tau_end[i] = hits[i].t - s.t;
+    }
+    kernel_(elliptic_[k].walls, elliptic_[k].drive, cells_, m, out);
+    for (int i = 0; i < n; ++i) {
+      if (scalar[i]) continue;
+      const DrivenState& s = *states[i];
+      const double t = out.handed_back[i] ? flight_->scan_from(s).exit_time(w, hits[i].t)
+                       : out.wall[i] >= 0 ? s.t + out.tau[i] : never;
+      if (t < hits[i].t) hits[i].t = t, hits[i].wall = {wall_kind::elliptic_arc, int(k)}, elliptic[i] = true;
+    }
+  }
   for (int i = 0; i < n; ++i) {
     const DrivenState& s = *states[i];
-    if (!in.active[i] || out.handed_back[i]) {
+    if (scalar[i]) {
       hits[i] = collision(*table_, *flight_, s, t_end[i]);
-      continue;
-    }
-    // As DrivenScan::first_hit and `collision` make the hit: the kernel made its state, or
-    // left it to be made here; a wall without windows may be hit before.
-    auto& hit = hits[i] = {};
-    hit.t = t_end[i];
-    if (out.wall[i] >= 0) lane_hit(s, out, i, hit);
-    if (without_windows_ && flight_->scan_from(s).first_hit_without_windows(*table_, hit)) {
+    } else if (elliptic[i]) {
+      auto& hit = hits[i];
       hit.midpoint_inside = false;
       hit.state = flight_->advance(s, hit.t);
       std::tie(hit.point, hit.normal) = table_->contact(hit.wall, hit.state.x, hit.state.v);

@@ -829,7 +829,10 @@ void first_hits(const Walls& walls, const Drive& drive, const Cells& cells, cons
       Lanes<mix> part(walls, all, q, live, load(flights.tau_end + first));
       while (part.busy()) part.round();
       part.write(hits, first);
-      part.make_states(cells, flights, hits, first);
+      if (walls.make_states)
+        part.make_states(cells, flights, hits, first);
+      else
+        for (int i = first; i < first + W; ++i) hits.made[i] = false;
     }
   };
   if (walls.segments == 0) search.template operator()<Mix::arcs>();

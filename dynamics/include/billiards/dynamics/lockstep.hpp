@@ -24,6 +24,7 @@
 #include "billiards/dynamics/simd.hpp"
 
 #include <cstdint>
+#include <vector>
 
 namespace billiards::dynamics {
 
@@ -36,9 +37,10 @@ Kernel chosen_kernel();
 
 }  // namespace lockstep
 
-/// A table whose driven flights can be searched in lock step (segments and arcs, at most
-/// lockstep::max_walls of them, and any elliptic arcs, searched after the lanes as
-/// DrivenScan::first_hit searches them), ready for `collisions`.
+/// A table whose driven flights can be searched in lock step (at most lockstep::max_walls
+/// segments and arcs, and elliptic arcs, each searched after them as DrivenScan::first_hit
+/// searches it: the mapped flight through the unit arc, in lanes of its own), ready for
+/// `collisions`.
 class LockstepTable {
  public:
   static constexpr int lanes = lockstep::lanes;
@@ -62,8 +64,13 @@ class LockstepTable {
   lockstep::Walls walls_{};
   lockstep::Drive drive_;
   lockstep::Cells cells_;
+  /// Each elliptic arc's unit arc and the drive mapped with it.
+  struct Mapped {
+    lockstep::Walls walls;
+    lockstep::Drive drive;
+  };
+  std::vector<Mapped> elliptic_;
   bool usable_ = false;
-  bool without_windows_ = false;  // elliptic arcs
 };
 
 }  // namespace billiards::dynamics

@@ -34,6 +34,9 @@ struct alignas(64) Walls {
   double ax[max_walls], ay[max_walls], bx[max_walls], by[max_walls];  // a segment
   double nx[max_walls], ny[max_walls], dir_x[max_walls], dir_y[max_walls], dir_norm[max_walls], span_tol[max_walls];
   int count = 0, segments = 0;
+  /// Whether the kernel makes the hits' states (Hits::made); not for an elliptic arc's unit
+  /// arc, met by mapped flights, whose hits the caller makes in the table's frame.
+  bool make_states = true;
 };
 
 /// The table's classified cells (BasicTable::Classes), for the flights' midpoint check.
