@@ -268,9 +268,11 @@ TEST_CASE("invalid meshes are rejected with the reason") {
   mesh_rejected("OFF)# a comment after the keyword, no space before it\n4 42222222 9\n",
                 "its header announces 4 vertices and 4.22222e+07 faces");
   mesh_rejected("COFF\n" + cube_vertices + cube_faces, "coloured OFF (COFF) is not read");
-  // Counts CGAL's reader computes with: twice the edges (2e9 would overflow an int), and those
-  // of binary OFF, whose header may follow a comment (fuzz findings).
+  // Counts CGAL's reader computes with: twice the edges (2e9 would overflow an int; a count
+  // CGAL reads up to a control character too), and those of binary OFF, whose header may
+  // follow a comment (fuzz findings).
   mesh_rejected("OFF\n3 1 2000000000\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "its header announces 2e+09 edges, more than its");
+  mesh_rejected("OFF\n3 1 2000000000\x04" "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "its header announces 2e+09 edges");
   mesh_rejected("OFF\n# a comment\nBINARY\n" + std::string("\0\0\0\3\0\0\0\1\x70\0\0\0", 12), "binary OFF is not read");
   mesh_rejected("OFF BINARY\n" + std::string(12, '\x7f'), "binary OFF is not read");
   mesh_rejected("OFF\n" + cube_vertices + "3 0 1 2\n200000000000 0 1 2\n" + cube_faces.substr(16),

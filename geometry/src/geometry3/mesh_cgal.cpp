@@ -11,6 +11,7 @@
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/IO/OFF/File_header_extended_OFF.h>
 #include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_2.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -26,6 +27,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -237,14 +239,49 @@ TriangleMesh checked_mesh(const std::string& path, const std::vector<Point>& poi
 /// Why an OFF file cannot be read safely, if it cannot: vertex colours (COFF), binary OFF, or
 /// counts beyond what its `size` bytes can hold, in its header (vertices and faces: ≥ 5 bytes a
 /// vertex and 7 a face as text, "0 0 0" and "3 0 1 2" with separators; edges: ≥ 2 bytes each,
-/// an index in a face) or in a face (≥ 2 bytes an index).  The header is the keyword (OFF,
-/// with CGAL's prefixes ST, C, N, 4, n), `#` comments, then the counts; files that do not
-/// parse so are left to CGAL's reader to refuse.
+/// an index in a face) or in a face (≥ 2 bytes an index).  The header is read as CGAL's scanner
+/// reads it (File_header_OFF's operator>>: its comment skipping, its keyword with the prefixes
+/// ST, C, N, 4, n, then `int`s from the stream), so that the counts checked are the ones it
+/// takes (fuzz findings: counts after a comment, or followed by a control character, went
+/// unchecked when the header was read otherwise); a header it refuses is left to it.
 std::optional<std::string> off_problem(std::istream& in, double size) {
+  const auto alnum = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; };
+  char c;
+  while ((in >> c) && c == '#') in >> CGAL::skip_until_EOL;
+  if (!in) return std::nullopt;
+  std::string keyword(1, c);
+  while (keyword.size() < 41 && in.get(c) && alnum(c)) keyword += c;
+  const auto off = keyword.find("OFF");
+  if (off == std::string::npos) return std::nullopt;
+  const std::string prefix = keyword.substr(0, off);
+  // CGAL's scanner of vertex colours (COFF) reads past its buffer on malformed colours (a fuzz
+  // finding); a billiard has no use for colours.
+  if (prefix.find('C') != std::string::npos)
+    return "coloured OFF (" + keyword + ") is not read: list the vertices without colours (OFF)";
+  in >> CGAL::skip_comment_OFF >> c;
+  if (!in) return std::nullopt;
+  if (!std::isdigit(static_cast<unsigned char>(c))) {
+    std::string word(1, c);
+    while (word.size() < 41 && in.get(c) && alnum(c)) word += c;
+    // Binary OFF: CGAL's reader computes with its counts unchecked (twice the edges overflow an
+    // int: a fuzz finding); a mesh is as well written as text.
+    if (word == "BINARY") return "binary OFF is not read: write the mesh as text (OFF or OBJ), or as STL";
+    return std::nullopt;
+  }
+  in.putback(c);
+  int vertices = 0, faces = 0, edges = 0;
+  in >> vertices;
+  if (prefix.find('n') != std::string::npos) in >> vertices;  // nOFF: that was the dimension
+  in >> faces >> edges;
+  if (!in) return std::nullopt;
+  if (!(vertices >= 0 && faces >= 0 && 5.0 * vertices + 7.0 * faces <= size))
+    return fmt::format("its header announces {:g} vertices and {:g} faces, more than its {:g} bytes can hold",
+                       double(vertices), double(faces), size);
+  // (CGAL doubles the edges in an int.)
+  if (!(edges >= 0 && edges <= std::numeric_limits<int>::max() / 2 && 2.0 * edges <= size))
+    return fmt::format("its header announces {:g} edges, more than its {:g} bytes can hold", double(edges), size);
   std::string token;
-  // '#' starts a comment to the end of the line, within a token too ("OFF#..."), as CGAL's
-  // scanner reads it (a fuzz finding: counts after such a comment went unchecked).
-  const auto next = [&]() -> bool {
+  const auto next = [&]() -> bool {  // (a '#' starts a comment to the end of the line)
     while (in >> token) {
       const auto hash = token.find('#');
       if (hash == std::string::npos) return true;
@@ -254,31 +291,6 @@ std::optional<std::string> off_problem(std::istream& in, double size) {
     }
     return false;
   };
-  const auto parsed = [&](double& x) {
-    char* end = nullptr;
-    x = std::strtod(token.c_str(), &end);
-    return *end == '\0';
-  };
-  const auto number = [&](double& x) { return next() && parsed(x); };
-  if (!next() || token.find("OFF") == std::string::npos) return std::nullopt;
-  const std::string keyword = token;
-  // CGAL's scanner of vertex colours (COFF) reads past its buffer on malformed colours (a fuzz
-  // finding); a billiard has no use for colours.
-  if (keyword.substr(0, keyword.find("OFF")).find('C') != std::string::npos)
-    return "coloured OFF (" + keyword + ") is not read: list the vertices without colours (OFF)";
-  if (!next()) return std::nullopt;
-  // Binary OFF: CGAL's reader computes with its counts unchecked (twice the edges overflow an
-  // int: a fuzz finding); a mesh is as well written as text.
-  if (token.rfind("BINARY", 0) == 0) return "binary OFF is not read: write the mesh as text (OFF or OBJ), or as STL";
-  if (keyword.find('n') != std::string::npos && !next()) return std::nullopt;  // nOFF: that was the dimension
-  double vertices, faces, edges;
-  if (!parsed(vertices) || !number(faces)) return std::nullopt;
-  if (!(vertices >= 0 && faces >= 0 && 5 * vertices + 7 * faces <= size))
-    return fmt::format("its header announces {:g} vertices and {:g} faces, more than its {:g} bytes can hold", vertices,
-                       faces, size);
-  if (!number(edges)) return std::nullopt;
-  if (!(edges >= 0 && 2 * edges <= std::min(size, double(std::numeric_limits<int>::max()))))
-    return fmt::format("its header announces {:g} edges, more than its {:g} bytes can hold", edges, size);
   std::string line;
   for (double v = 0; v < vertices && std::getline(in >> std::ws, line);)
     if (line[0] != '#') ++v;
