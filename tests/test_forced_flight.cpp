@@ -9,6 +9,7 @@
 
 #include <boost/multiprecision/mpfr.hpp>
 #include "brute_force_root.hpp"
+#include "many_walls.hpp"
 
 #include <catch2/catch.hpp>
 #include <fmt/core.h>
@@ -238,11 +239,16 @@ TEST_CASE("the windows searched in time order find the collision the wall-by-wal
   // the wall just bounced off), with and without a horizon, at low and high frequencies.  The
   // state at the hit must carry its phase's sine and cosine.
   // (Elliptic arcs: collision() searches the mapped flight through the unit arc in its windows,
-  // the wall-by-wall search scans it: elliptic_exit_time.)
+  // the wall-by-wall search scans it: elliptic_exit_time.  Tables of more than
+  // scan::windows_group_walls segments and arcs: their windows are searched group by group.)
+  std::vector<std::pair<std::string, dynamics::Table>> tables;
   for (const char* name : {"clover", "l-room", "mushroom", "sinai", "stadium", "annulus", "sinai-ellipse",
-                           "elliptic-stadium", "ellipse"}) {
-    const auto region = geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml").region;
-    const dynamics::Table table(region);
+                           "elliptic-stadium", "ellipse"})
+    tables.emplace_back(name, geometry::load_shape(std::string(BILLIARDS_SOURCE_DIR "/shapes/") + name + ".yaml").region);
+  tables.emplace_back("twenty-gon", twenty_gon());
+  tables.emplace_back("gear of 16 around a disk", gear(dynamics::scan::windows_group_walls / 2, true));
+  tables.emplace_back("circle of 24 arcs", circle_of_arcs(dynamics::scan::windows_in_time_order_walls));
+  for (const auto& [name, table] : tables) {
     for (const double omega : {10 * pi, 40 * pi, 320 * pi, 2560 * pi}) {
       dynamics::ParticleRng rng(31, std::uint64_t(omega));
       const PeriodicDriveFlight flight{10 * Vec2(1, 1) / std::sqrt(2.0), omega, 0};

@@ -13,6 +13,7 @@
 #include "billiards/geometry3/shape3_file.hpp"
 
 #include "lanes_helpers.hpp"
+#include "many_walls.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -67,21 +68,6 @@ bool same_hit(const dynamics::FlightHit<Flight>& a, const dynamics::FlightHit<Fl
 
 Table table_of(const std::string& shape) {
   return Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + shape + ".yaml").region);
-}
-
-/// A 20-gon with three circular holes: 20 segments and 3 arcs.
-Table twenty_gon() {
-  std::string text = "name: twenty-gon\nboundary:\n  polygon: [";
-  for (int k = 0; k < 20; ++k)
-    text += (k ? ", [" : "[") + std::to_string(std::cos(2 * geometry::pi * k / 20)) + ", " +
-            std::to_string(std::sin(2 * geometry::pi * k / 20)) + "]";
-  text += R"(]
-holes:
-  - circle: {center: [0.3, 0], radius: 0.15}
-  - circle: {center: [-0.3, 0.3], radius: 0.1}
-  - circle: {center: [-0.2, -0.4], radius: 0.2}
-)";
-  return Table(geometry::parse_shape(text, "twenty-gon").region);
 }
 
 /// Fresh microcanonical starts and the states after each bounce of their orbits, each flight on

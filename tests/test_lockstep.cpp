@@ -9,6 +9,7 @@
 #include "billiards/geometry.hpp"
 
 #include "lanes_helpers.hpp"
+#include "many_walls.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -40,55 +41,38 @@ std::vector<TargetKernel> kernels() {
   return all;
 }
 
-/// What the kernel decided in its calls for elliptic arcs (Walls::make_states false): a kernel
-/// that forwards to `kernel` and counts, so that a test sees the lanes do that search (the
-/// bit-for-bit comparison alone would pass if every lane were handed back).
-struct EllipticCalls {
-  dynamics::lockstep::Kernel kernel = nullptr;
+/// What the kernel decided in a kind of its calls: the lanes it searched, those it handed back,
+/// and the hits it found.
+struct Calls {
   long lanes = 0, handed_back = 0, hits = 0;
+  void count(const dynamics::lockstep::Flights& flights, const dynamics::lockstep::Hits& hits_found) {
+    for (int i = 0; i < dynamics::lockstep::lanes; ++i) {
+      if (!flights.active[i]) continue;
+      ++lanes;
+      handed_back += hits_found.handed_back[i];
+      hits += !hits_found.handed_back[i] && hits_found.wall[i] >= 0;
+    }
+  }
 };
-EllipticCalls elliptic_calls;
+/// The kernel's calls counted by a kernel that forwards to `kernel`, so that a test sees the
+/// lanes do a search (the bit-for-bit comparison alone would pass if every lane were handed
+/// back): the calls for elliptic arcs (Walls::make_states false), and those for groups of fewer
+/// than max_walls segments and arcs (in the tables of more than max_walls here, their last).
+struct CountedCalls {
+  dynamics::lockstep::Kernel kernel = nullptr;
+  Calls elliptic, short_group;
+};
+CountedCalls counted;
 void counting_kernel(const dynamics::lockstep::Walls& walls, const dynamics::lockstep::Drive& drive,
                      const dynamics::lockstep::Cells& cells, const dynamics::lockstep::Flights& flights,
                      dynamics::lockstep::Hits& hits) {
-  elliptic_calls.kernel(walls, drive, cells, flights, hits);
-  if (walls.make_states) return;
-  for (int i = 0; i < dynamics::lockstep::lanes; ++i) {
-    if (!flights.active[i]) continue;
-    ++elliptic_calls.lanes;
-    elliptic_calls.handed_back += hits.handed_back[i];
-    elliptic_calls.hits += !hits.handed_back[i] && hits.wall[i] >= 0;
-  }
+  counted.kernel(walls, drive, cells, flights, hits);
+  if (!walls.make_states) counted.elliptic.count(flights, hits);
+  else if (walls.count < dynamics::lockstep::max_walls) counted.short_group.count(flights, hits);
 }
 
 dynamics::Table table_of(const std::string& shape) {
   return dynamics::Table(geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/" + shape + ".yaml").region);
-}
-
-// A circle cut into n arcs.
-dynamics::Table circle_of_arcs(int n) {
-  geometry::Region2 circle;
-  for (int k = 0; k < n; ++k) {
-    geometry::Arc arc{Vec2(0, 0), 1, 2 * pi * k / n, 2 * pi / n, {}, {}};
-    arc.source = arc.point_at(arc.start);
-    arc.target = arc.point_at(arc.start + arc.sweep);
-    circle.outer.pieces.push_back(arc);
-    circle.outer.where.emplace_back();
-  }
-  return dynamics::Table(circle);
-}
-
-// A gear: the polygon of 2·teeth vertices on radii 1 and 3/4 in turn, around a disk of radius
-// 0.3 if `hole` (2·teeth segments, and an arc).
-dynamics::Table gear(int teeth, bool hole) {
-  std::string yaml = "name: gear\nboundary:\n  polygon: [";
-  for (int k = 0; k < 2 * teeth; ++k) {
-    const double r = k % 2 ? 0.75 : 1, a = pi * k / teeth;
-    yaml += (k ? ", [" : "[") + std::to_string(r * std::cos(a)) + ", " + std::to_string(r * std::sin(a)) + "]";
-  }
-  yaml += "]\n";
-  if (hole) yaml += "holes:\n  - circle: {center: [0, 0], radius: 0.3}\n";
-  return dynamics::Table(geometry::parse_shape(yaml, "gear").region);
 }
 
 // Bit for bit: the same doubles (the phase's two among them), not merely equal ones (+0 and −0 differ).
@@ -138,21 +122,26 @@ TEST_CASE("lock step: each batch's hits are the scalar search's, bit for bit") {
   // enough to end many flights before their walls (found() false).
   const double horizons[] = {dynamics::never, 20, 1e-3, 0.03};
   // Arcs, segments (the stadium, the mushroom, polygons), both with holes (Sinai, annulus),
-  // elliptic arcs beside them or alone (each searched in lanes after the rest), and more walls
+  // elliptic arcs beside them or alone (each searched in lanes after the rest), more walls
   // than one vector of lanes holds, up to lockstep::max_walls (the gear: 12 segments around a
-  // disk; a gear of 16 segments; a circle of 12 arcs).
+  // disk; a gear of 16 segments; a circle of 12 arcs), and more than that, up to
+  // scan::windows_in_time_order_walls, searched in two groups (a gear of 16 segments around a
+  // disk; a 20-gon with three holes; a circle of 24 arcs).
   std::vector<std::pair<std::string, dynamics::Table>> tables;
   for (const char* shape : {"clover", "circle", "annulus", "stadium", "mushroom", "sinai", "l-room", "triangle",
                             "sinai-ellipse", "elliptic-stadium", "ellipse", "gear"})
     tables.emplace_back(shape, table_of(shape));
   tables.emplace_back("gear of 16", gear(dynamics::lockstep::max_walls / 2, false));
   tables.emplace_back("circle of 12 arcs", circle_of_arcs(12));
+  tables.emplace_back("gear of 16 around a disk", gear(dynamics::lockstep::max_walls / 2, true));
+  tables.emplace_back("twenty-gon", twenty_gon());
+  tables.emplace_back("circle of 24 arcs", circle_of_arcs(dynamics::scan::windows_in_time_order_walls));
   for (const auto& [shape, table] : tables)
     for (const double omega : {4 * pi, 10 * pi, 40 * pi, 2560 * pi}) {
       const PeriodicDriveFlight flight{10 / std::sqrt(2.0) * Vec2(1, 1), omega, 0.3};
       const auto states = states_along_trajectories(table, flight, 6, 60);
       for (const auto& [name, bit, kernel, automatic] : kernels()) {
-        elliptic_calls = {kernel};
+        counted = {kernel, {}, {}};
         const dynamics::LockstepTable lockstep(table, flight, counting_kernel);
         REQUIRE(lockstep.usable());
         int compared = 0, found = 0, mismatches = 0;
@@ -208,37 +197,46 @@ TEST_CASE("lock step: each batch's hits are the scalar search's, bit for bit") {
         // Elliptic arcs are searched in lanes; from 10π on, most lanes are decided there and hits
         // found there (at 4π the wobble |F|/(mω) ≈ 0.8 is near the speed, and windows of
         // uncertain slope, which the scalar search scans, are common: in the Sinai–ellipse table
-        // every elliptic hit was handed back).
+        // every elliptic hit was handed back).  So is a table's second group of walls.
         const bool elliptic = !table.elliptic_arcs().empty();
-        INFO("elliptic lanes " << elliptic_calls.lanes << ", handed back " << elliptic_calls.handed_back << ", hits "
-                               << elliptic_calls.hits);
-        CHECK((elliptic_calls.lanes > 0) == elliptic);
-        if (omega >= 10 * pi) {
-          CHECK(4 * elliptic_calls.handed_back <= elliptic_calls.lanes);
-          CHECK((elliptic_calls.hits > 0) == elliptic);
-        }
+        const bool two_groups = table.segments().size() + table.arcs().size() > std::size_t(dynamics::lockstep::max_walls);
+        CHECK((counted.elliptic.lanes > 0) == elliptic);
+        auto decided_in_lanes = [&](const Calls& calls, const char* what) {
+          INFO(what << ": lanes " << calls.lanes << ", handed back " << calls.handed_back << ", hits " << calls.hits);
+          CHECK(calls.lanes > 0);
+          if (omega >= 10 * pi) {
+            CHECK(4 * calls.handed_back <= calls.lanes);
+            CHECK(calls.hits > 0);
+          }
+        };
+        if (elliptic) decided_in_lanes(counted.elliptic, "elliptic arcs");
+        if (two_groups) decided_in_lanes(counted.short_group, "second group");
       }
     }
 }
 
 TEST_CASE("lock step: tables of too many walls are left to the scalar search") {
   const PeriodicDriveFlight flight{Vec2(7, 7), 40 * pi, 0};
-  CHECK_FALSE(dynamics::LockstepTable(table_of("wavy-1200"), flight, kernels().back().kernel).usable());
-  // More walls than the kernel holds: a circle cut into max_walls + 1 arcs, a gear of max_walls
-  // segments around a hole; max_walls do fit.
-  const int arcs = dynamics::lockstep::max_walls + 1;
-  const dynamics::Table many = circle_of_arcs(arcs);
-  REQUIRE(many.arcs().size() == std::size_t(arcs));
-  CHECK_FALSE(dynamics::LockstepTable(many, flight, kernels().back().kernel).usable());
-  CHECK_FALSE(dynamics::LockstepTable(gear(dynamics::lockstep::max_walls / 2, true), flight, kernels().back().kernel).usable());
-  CHECK(dynamics::LockstepTable(circle_of_arcs(arcs - 1), flight, kernels().back().kernel).usable());
+  const auto kernel = kernels().back().kernel;
+  CHECK_FALSE(dynamics::LockstepTable(table_of("wavy-1200"), flight, kernel).usable());
+  // More walls than the scalar search takes in windows (it takes them wall by wall): a circle
+  // cut into 25 arcs, a gear of 24 segments around a hole; 24 do fit.
+  const int most = dynamics::scan::windows_in_time_order_walls;
+  const dynamics::Table many = circle_of_arcs(most + 1);
+  REQUIRE(many.arcs().size() == std::size_t(most + 1));
+  CHECK_FALSE(dynamics::LockstepTable(many, flight, kernel).usable());
+  CHECK_FALSE(dynamics::LockstepTable(gear(most / 2, true), flight, kernel).usable());
+  CHECK(dynamics::LockstepTable(circle_of_arcs(most), flight, kernel).usable());
+  CHECK(dynamics::LockstepTable(gear(most / 2, false), flight, kernel).usable());
   // No kernel (BILLIARDS_SIMD=scalar): not usable either.
   CHECK_FALSE(dynamics::LockstepTable(table_of("clover"), flight, nullptr).usable());
 }
 
 TEST_CASE("lock step: ensembles equal simulate particle by particle, for every target and 1, 2 and 3 threads") {
-  for (const char* shape : {"clover", "stadium", "sinai-ellipse", "ellipse"}) {
-    const auto table = table_of(shape);
+  std::vector<std::pair<std::string, dynamics::Table>> tables;
+  for (const char* shape : {"clover", "stadium", "sinai-ellipse", "ellipse"}) tables.emplace_back(shape, table_of(shape));
+  tables.emplace_back("twenty-gon", twenty_gon());  // (two groups of walls)
+  for (const auto& [shape, table] : tables) {
     dynamics::RunOptions opt;
     opt.record_times = {0, 0.5, 10, 200};
     opt.verify_every_flight = true;

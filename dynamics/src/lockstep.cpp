@@ -7,6 +7,8 @@ namespace billiards::dynamics {
 
 namespace lockstep {
 
+static_assert(max_walls == scan::windows_group_walls, "the lanes search a table's walls in the scalar search's groups");
+
 Kernel chosen_kernel() {
   static const Kernel k = kernel_of(simd::chosen_target());
   return k;
@@ -25,20 +27,23 @@ lockstep::Drive drive_of(const PeriodicDriveFlight& flight) {
           q.accel_norm, q.inv_omega, q.delta};
 }
 
-/// The segments, then the arcs, field by field, padded with the last wall to max_walls.
-lockstep::Walls walls_of(const std::vector<SegmentWall>& segments, const std::vector<ArcWall>& arcs) {
+/// Walls first … first + count − 1 of the segments, then the arcs, field by field, padded
+/// with the last to max_walls.
+lockstep::Walls walls_of(const std::vector<SegmentWall>& segments, const std::vector<ArcWall>& arcs, int first,
+                         int count) {
   lockstep::Walls w{};
-  w.count = int(segments.size() + arcs.size()), w.segments = int(segments.size());
-  for (int i = 0; i < lockstep::max_walls && w.count > 0; ++i) {
-    const int k = std::min(i, w.count - 1);
-    w.arc[i] = k >= w.segments ? -1 : 0;
-    if (k < w.segments) {
+  const int n_segments = int(segments.size());
+  w.count = count, w.segments = std::clamp(n_segments - first, 0, count);
+  for (int i = 0; i < lockstep::max_walls && count > 0; ++i) {
+    const int k = first + std::min(i, count - 1);
+    w.arc[i] = k >= n_segments ? -1 : 0;
+    if (k < n_segments) {
       const auto& g = segments[std::size_t(k)];
       w.slack[i] = g.slack, w.ax[i] = g.a.x(), w.ay[i] = g.a.y(), w.bx[i] = g.b.x(), w.by[i] = g.b.y();
       w.nx[i] = g.normal.x(), w.ny[i] = g.normal.y(), w.dir_x[i] = g.dir.x(), w.dir_y[i] = g.dir.y();
       w.dir_norm[i] = g.dir.norm(), w.span_tol[i] = g.span_tol;
     } else {
-      const auto& a = arcs[std::size_t(k - w.segments)];
+      const auto& a = arcs[std::size_t(k - n_segments)];
       w.slack[i] = a.slack, w.cx[i] = a.center.x(), w.cy[i] = a.center.y(), w.r[i] = a.radius;
       w.sign[i] = a.focusing ? 1 : -1, w.fx[i] = a.from.x(), w.fy[i] = a.from.y(), w.tx[i] = a.to.x(), w.ty[i] = a.to.y();
       w.full[i] = a.full ? -1 : 0, w.half[i] = a.ccw_extent <= geometry::pi ? -1 : 0;
@@ -55,16 +60,18 @@ LockstepTable::LockstepTable(const Table& table, const PeriodicDriveFlight& flig
   const auto& arcs = table.arcs();
   // (DrivenScan::first_hit searches a table of more walls than it takes in windows wall by
   // wall: not in lanes.)
-  usable_ = kernel && segments.size() + arcs.size() <= std::size_t(lockstep::max_walls) &&
-            table.wall_count() <= std::size_t(scan::windows_in_time_order_walls);
+  usable_ = kernel && table.wall_count() <= std::size_t(scan::windows_in_time_order_walls);
   if (!usable_) return;
   drive_ = drive_of(flight);
   const auto& classes = table.classes();
   cells_ = {classes.origin.x(), classes.origin.y(), classes.inverse_cell.x(), classes.inverse_cell.y(),
             classes.nx,         classes.ny,         classes.cell.data()};
-  walls_ = walls_of(segments, arcs);
+  // The segments and arcs in scan::first_hit_in_windows' groups.
+  const int count = int(segments.size() + arcs.size());
+  for (int first = 0; first < count; first += lockstep::max_walls)
+    groups_.push_back({walls_of(segments, arcs, first, std::min(count - first, lockstep::max_walls)), first});
   for (const auto& w : table.elliptic_arcs()) {
-    elliptic_.push_back({walls_of({}, {w.unit}), drive_of(mapped(flight, w))});
+    elliptic_.push_back({walls_of({}, {w.unit}, 0, 1), drive_of(mapped(flight, w))});
     elliptic_.back().walls.make_states = false;
   }
 }
@@ -86,15 +93,20 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
     hits[i] = {};
     hits[i].t = t_end[i];
   }
-  // As DrivenScan::first_hit and `collision` make the hit: the segments' and arcs' windows (the
-  // kernel made the hit's state, or left it to be made here)...
+  // As DrivenScan::first_hit and `collision` make the hit: the segments' and arcs' windows,
+  // group after group up to the best hit so far (the kernel made the hit's state, or left it
+  // to be made here)...
   lockstep::Hits out;
   auto lanes_left = [&] { return std::find(scalar, scalar + n, false) != scalar + n; };
-  if (walls_.count > 0 && lanes_left()) {
-    kernel_(walls_, drive_, cells_, in, out);
+  for (const auto& group : groups_) {
+    if (!lanes_left()) break;
+    for (int i = 0; i < n; ++i) in.active[i] = scalar[i] ? 0 : -1;
+    kernel_(group.walls, drive_, cells_, in, out);
     for (int i = 0; i < n; ++i) {
       scalar[i] |= out.handed_back[i];
-      if (!scalar[i] && out.wall[i] >= 0) lane_hit(*states[i], out, i, hits[i]);
+      if (scalar[i] || out.wall[i] < 0) continue;
+      lane_hit(*states[i], out, i, group.first, hits[i]);
+      in.tau_end[i] = out.tau[i];
     }
   }
   // ...then each elliptic arc up to the best hit so far, as DrivenScan::exit_time searches it:
@@ -134,10 +146,10 @@ void LockstepTable::collisions(const DrivenState* const* states, const double* t
   }
 }
 
-void LockstepTable::lane_hit(const DrivenState& s, const lockstep::Hits& out, int i,
+void LockstepTable::lane_hit(const DrivenState& s, const lockstep::Hits& out, int i, int first,
                              FlightHit<PeriodicDriveFlight>& hit) const {
-  hit.wall = out.wall[i] < walls_.segments ? WallId{wall_kind::segment, out.wall[i]}
-                                           : WallId{wall_kind::arc, out.wall[i] - walls_.segments};
+  const int wall = first + out.wall[i], segments = int(table_->segments().size());
+  hit.wall = wall < segments ? WallId{wall_kind::segment, wall} : WallId{wall_kind::arc, wall - segments};
   hit.midpoint_inside = out.midpoint_inside[i];
   if (out.made[i]) {
     hit.t = out.t[i];

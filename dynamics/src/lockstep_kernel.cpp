@@ -458,13 +458,19 @@ LANES PlaneGapLanes<Pack> plane_gap_of(const Quiver& q, const Wall& g) {
                               g.nx * (q.g0x - g.ax) + g.ny * (q.g0y - g.ay), g.slack);
 }
 
-/// A lane's windows: two slots per wall (SphereGap::windows' first and second; PlaneGap's one).
+/// A lane's windows, in slots: one per segment (PlaneGap's window), then two per arc
+/// (SphereGap::windows' first and second), the walls in their order (Walls: the segments
+/// first), as the scalar search inserts them (a tie goes to the first slot, as it goes to the
+/// first inserted there).
 struct Windows {
   Pack start[2 * max_walls], end[2 * max_walls], margin[2 * max_walls];
   Mask below[2 * max_walls], open[2 * max_walls];  // open: found and not yet visited
 };
 
-/// The windows of wall w until `horizon`, into slots 2w and 2w + 1.  Lanes whose guide stands
+/// The first of wall w's slots among the walls' (Windows).
+LANES int first_slot(const Walls& walls, int w) { return w < walls.segments ? w : 2 * w - walls.segments; }
+
+/// The windows of wall w until `horizon`, into its slots.  Lanes whose guide stands
 /// still (u = 0) get no window here: they are handed back.  A window in which f' < 0 is certain
 /// is not opened: the scalar search visits it and passes it (slope_sign = −1 with the window's
 /// end cut at the best hit so far, which can only be earlier: −1 at the end here is −1 there,
@@ -475,17 +481,19 @@ LANES void wall_windows(const Quiver& q, const Walls& walls, Pack horizon, Mask 
   const Wall wall(walls, w);
   WindowLanes<Pack, Mask> found[2];
   Pack slope[2];
+  int slots = 1;
   if (walls.arc[w]) {
     const SphereGapLanes<Pack> g = sphere_gap_of(q, wall);
     windows<PackLanes>(g, q.lanes(), horizon, live, found[0], found[1]);
     for (int j = 0; j < 2; ++j) slope[j] = slope_sign<PackLanes>(g, q.lanes(), found[j].start, found[j].end, found[j].margin);
+    slots = 2;
   } else {
     const PlaneGapLanes<Pack> g = plane_gap_of(q, wall);
-    found[0] = window<PackLanes>(g, q.lanes(), horizon, live), found[1].open = Mask{};
-    slope[0] = slope[1] = slope_sign<PackLanes>(g, q.lanes());
+    found[0] = window<PackLanes>(g, q.lanes(), horizon, live);
+    slope[0] = slope_sign<PackLanes>(g, q.lanes());
   }
-  for (int j = 0; j < 2; ++j) {
-    const int slot = 2 * w + j;
+  for (int j = 0; j < slots; ++j) {
+    const int slot = first_slot(walls, w) + j;
     const auto& f = found[j];
     out.open[slot] = f.open & ~(slope[j] < 0);
     out.start[slot] = f.start, out.end[slot] = f.end, out.margin[slot] = f.margin, out.below[slot] = f.below;
@@ -625,7 +633,7 @@ class Lanes {
     // The earliest open window, the first of equals (as the scalar search's stable order):
     // a tournament, whose rounds do not wait on one another as a pass over the slots would.
     constexpr int max_slots = 2 * max_walls;
-    const int slots = 2 * walls_.count;
+    const int slots = first_slot(walls_, walls_.count);
     Pack key[max_slots];
     Mask index[max_slots];
     Mask found{};
@@ -652,7 +660,7 @@ class Lanes {
     choosing_ &= go;
     for (int j = 0; j < slots; ++j) win_.open[j] &= ~(go & (slot == j));
     if (!any(go)) return;
-    const Mask wall = slot >> 1;
+    const Mask wall = wall_of_slot(slot);
     const Wall a = wall_of(wall);
     end = min(end, tau_best_);
     for_kinds(a, go, [&](const auto& kinds) LANES_LAMBDA { begin_searches(kinds, go, wall, a, start, end, margin, below); });
@@ -689,6 +697,14 @@ class Lanes {
   LANES Wall wall_of(Mask wall) const {
     if (walls_.count <= max_walls / 2) return Wall(all_, wall, table, HalfWallVectors{});
     return Wall(all_, wall, table, AllWallVectors{});
+  }
+
+  /// The wall of each lane's slot (first_slot's inverse).
+  LANES Mask wall_of_slot(Mask slot) const {
+    if constexpr (table == Mix::segments) return slot;
+    if constexpr (table == Mix::arcs) return slot >> 1;
+    const int segments = walls_.segments;
+    return sel(slot < segments, slot, (slot + segments) >> 1);
   }
 
   /// f(Kinds) for the kinds of the walls w of the lanes that `count`: the table's one kind, or
@@ -795,7 +811,7 @@ class Lanes {
   /// Has the lane a window not yet visited that opens by τ?
   Mask window_opens_by(Pack tau) const {
     Mask opens{};
-    for (int j = 0; j < 2 * walls_.count; ++j) opens |= win_.open[j] & (win_.start[j] <= tau);
+    for (int j = 0; j < first_slot(walls_, walls_.count); ++j) opens |= win_.open[j] & (win_.start[j] <= tau);
     return opens;
   }
 

@@ -337,23 +337,20 @@ Real crossing_in_window(const Gap& g, InSpan in_span, const Window<Real>& w, int
 
 /// Tables of more walls than this are searched wall by wall (see DrivenScan::first_hit).
 inline constexpr int windows_in_time_order_walls = 24;
+/// Walls whose windows are sorted and searched together (first_hit_in_windows): as many as the
+/// lock-step search holds in its vectors (lockstep::max_walls), so that it searches a table
+/// group by group as the scalar search does, with the same operations.
+inline constexpr int windows_group_walls = 16;
 
-/// The first collision of a driven flight with any of `walls` walls before τ = tau_best:
-/// tau_best, best_wall and `mark` (the flight's mark at the root, when the monotone search
-/// found it) are updated.  Every wall's windows until then are computed in closed form and
-/// searched in the order in which they open, so the search stops at the first window that
-/// opens after the best collision found and the walls beyond it are never sampled.
-/// `visit(w, fn)` calls fn(gap, passes, in_span) for wall w: its gap (the wall's `gap_along`),
-/// passes(start, end), true when the particle cannot reach the wall's span in the window, and
-/// the span test in_span(x).  Not for creeping flights (see `creep`), whose gaps these are.
+/// The first collision of a driven flight with walls 0 … walls − 1 of `visit`, at most
+/// windows_group_walls of them, before τ = tau_best: see first_hit_in_windows.
 template <class Real, class Visit, class Mark>
-void first_hit_in_windows(int walls, Visit visit, Real& tau_best, int& best_wall, Mark& mark) {
+void first_hit_in_group(int walls, Visit visit, Real& tau_best, int& best_wall, Mark& mark) {
   using std::min;
   // The windows as they are found (uninitialized storage), and their order of opening sorted
   // by insertion, stable: cheaper than swapping the windows themselves.
-  if (walls > windows_in_time_order_walls) throw std::logic_error("first_hit_in_windows: too many walls");
-  Window<Real> windows[2 * windows_in_time_order_walls];
-  unsigned char order[2 * windows_in_time_order_walls];
+  Window<Real> windows[2 * windows_group_walls];
+  unsigned char order[2 * windows_group_walls];
   int count = 0;
   for (int w = 0; w < walls; ++w)
     visit(w, [&](const auto& gap, const auto&, const auto&) {
@@ -380,6 +377,27 @@ void first_hit_in_windows(int walls, Visit visit, Real& tau_best, int& best_wall
         mark = sampled;
       }
     });
+}
+
+/// The first collision of a driven flight with any of `walls` walls before τ = tau_best:
+/// tau_best, best_wall and `mark` (the flight's mark at the root, when the monotone search
+/// found it) are updated.  The walls are taken in groups of windows_group_walls, in order, each
+/// group up to the best collision found before it; a group's windows until then are computed
+/// in closed form and searched in the order in which they open, so the search stops at the
+/// first window that opens after the best collision found and the walls beyond it are never
+/// sampled.  `visit(w, fn)` calls fn(gap, passes, in_span) for wall w: its gap (the wall's
+/// `gap_along`), passes(start, end), true when the particle cannot reach the wall's span in the
+/// window, and the span test in_span(x).  Not for creeping flights (see `creep`), whose gaps
+/// these are.
+template <class Real, class Visit, class Mark>
+void first_hit_in_windows(int walls, Visit visit, Real& tau_best, int& best_wall, Mark& mark) {
+  if (walls > windows_in_time_order_walls) throw std::logic_error("first_hit_in_windows: too many walls");
+  for (int first = 0; first < walls; first += windows_group_walls) {
+    auto in_group = [&](int w, auto&& fn) { visit(first + w, fn); };
+    int group_best = -1;
+    first_hit_in_group(std::min(walls - first, windows_group_walls), in_group, tau_best, group_best, mark);
+    if (group_best >= 0) best_wall = first + group_best;
+  }
 }
 
 /// The scan of a driven flight through one wall (`first_outward_crossing` of the gap g) whose

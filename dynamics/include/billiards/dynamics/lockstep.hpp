@@ -37,10 +37,11 @@ Kernel chosen_kernel();
 
 }  // namespace lockstep
 
-/// A table whose driven flights can be searched in lock step (at most lockstep::max_walls
-/// segments and arcs, and elliptic arcs, each searched after them as DrivenScan::first_hit
-/// searches it: the mapped flight through the unit arc, in lanes of its own), ready for
-/// `collisions`.
+/// A table whose driven flights can be searched in lock step (at most
+/// scan::windows_in_time_order_walls walls: the segments and arcs in groups of
+/// lockstep::max_walls, one call of the kernel each, and the elliptic arcs, each searched after
+/// them as DrivenScan::first_hit searches it: the mapped flight through the unit arc, in lanes
+/// of its own), ready for `collisions`.
 class LockstepTable {
  public:
   static constexpr int lanes = lockstep::lanes;
@@ -56,12 +57,20 @@ class LockstepTable {
 
  private:
   /// The hit the kernel found in lane i (it made the state there, or left it to be made).
-  void lane_hit(const DrivenState& s, const lockstep::Hits& out, int i, FlightHit<PeriodicDriveFlight>& hit) const;
+  void lane_hit(const DrivenState& s, const lockstep::Hits& out, int i, int first,
+                FlightHit<PeriodicDriveFlight>& hit) const;
 
   const Table* table_;
   const PeriodicDriveFlight* flight_;
   lockstep::Kernel kernel_;
-  lockstep::Walls walls_{};
+  /// The segments and arcs (numbered as the scalar search numbers them: the segments first) in
+  /// groups of at most lockstep::max_walls, searched as scan::first_hit_in_windows searches
+  /// them; `first`, the number of a group's first wall.
+  struct Group {
+    lockstep::Walls walls;
+    int first;
+  };
+  std::vector<Group> groups_;
   lockstep::Drive drive_;
   lockstep::Cells cells_;
   /// Each elliptic arc's unit arc and the drive mapped with it.
