@@ -13,19 +13,18 @@ namespace lockstep {
 
 /// Particles a call of the kernel searches, and the most walls it searches (a group of a
 /// table's walls, scan::windows_group_walls: they fit in vectors, where each lane picks its
-/// own).  (The kernel
-/// holds sixteen lanes in two AVX-512 registers, whose independent operations interleave and
-/// hide each other's latency, and searches the sixteen particles eight at a time on narrower
-/// targets, whose registers sixteen lanes would overflow; more lanes only lengthen the rounds
-/// in which finished lanes wait for the rest.)
+/// own).  (The kernel holds sixteen lanes in two AVX-512 registers, whose independent
+/// operations interleave and hide each other's latency, and searches the sixteen particles
+/// eight at a time on narrower targets, whose registers sixteen lanes would overflow; more
+/// lanes only lengthen the rounds in which finished lanes wait for the rest.)
 inline constexpr int lanes = 16;
 inline constexpr int max_walls = 16;
 
 /// A group of a table's segments and arcs, field by field (BasicSegmentWall's and
-/// BasicArcWall's), the segments first as the scalar search numbers them, padded to max_walls: each wall fills the
-/// fields of its kind.  (These structs are aligned to the kernel's registers, so that no load
-/// of a field straddles two cache lines, which would cost a second access on each of the
-/// kernel's loads.)
+/// BasicArcWall's), the segments first as the scalar search numbers them, padded to
+/// max_walls: each wall fills the fields of its kind.  (These structs are aligned to the
+/// kernel's registers, so that no load of a field straddles two cache lines, which would cost
+/// a second access on each of the kernel's loads.)
 struct alignas(64) Walls {
   std::int64_t arc[max_walls];  // −1: an arc, 0: a segment
   double slack[max_walls];
