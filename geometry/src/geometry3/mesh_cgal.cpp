@@ -245,12 +245,17 @@ TriangleMesh checked_mesh(const std::string& path, const std::vector<Point>& poi
 /// takes (fuzz findings: counts after a comment, or followed by a control character, went
 /// unchecked when the header was read otherwise); a header it refuses is left to it.
 std::optional<std::string> off_problem(std::istream& in, double size) {
-  const auto alnum = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; };
   char c;
+  // A keyword as CGAL scans it: c, then the letters and digits that follow (41 characters at
+  // most), the character after them consumed.
+  const auto word_from = [&](char first) {
+    std::string word(1, first);
+    while (word.size() < 41 && in.get(c) && std::isalnum(static_cast<unsigned char>(c))) word += c;
+    return word;
+  };
   while ((in >> c) && c == '#') in >> CGAL::skip_until_EOL;
   if (!in) return std::nullopt;
-  std::string keyword(1, c);
-  while (keyword.size() < 41 && in.get(c) && alnum(c)) keyword += c;
+  const std::string keyword = word_from(c);
   const auto off = keyword.find("OFF");
   if (off == std::string::npos) return std::nullopt;
   const std::string prefix = keyword.substr(0, off);
@@ -261,11 +266,9 @@ std::optional<std::string> off_problem(std::istream& in, double size) {
   in >> CGAL::skip_comment_OFF >> c;
   if (!in) return std::nullopt;
   if (!std::isdigit(static_cast<unsigned char>(c))) {
-    std::string word(1, c);
-    while (word.size() < 41 && in.get(c) && alnum(c)) word += c;
     // Binary OFF: CGAL's reader computes with its counts unchecked (twice the edges overflow an
     // int: a fuzz finding); a mesh is as well written as text.
-    if (word == "BINARY") return "binary OFF is not read: write the mesh as text (OFF or OBJ), or as STL";
+    if (word_from(c) == "BINARY") return "binary OFF is not read: write the mesh as text (OFF or OBJ), or as STL";
     return std::nullopt;
   }
   in.putback(c);
