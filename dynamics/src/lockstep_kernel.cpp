@@ -470,36 +470,6 @@ struct Windows {
 /// The first of wall w's slots among the walls' (Windows).
 LANES int first_slot(const Walls& walls, int w) { return w < walls.segments ? w : 2 * w - walls.segments; }
 
-/// The windows of wall w until `horizon`, into its slots.  Lanes whose guide stands
-/// still (u = 0) get no window here: they are handed back.  A window in which f' < 0 is certain
-/// is not opened: the scalar search visits it and passes it (slope_sign = −1 with the window's
-/// end cut at the best hit so far, which can only be earlier: −1 at the end here is −1 there,
-/// since for an arc qe and the threshold, rounded, only decrease with the end, and an inward
-/// guide cannot be outward too; for a segment the sign does not depend on the window), and one
-/// visit fewer for a lane is one round fewer for all W when it is the last to finish.
-LANES void wall_windows(const Quiver& q, const Walls& walls, Pack horizon, Mask live, Windows& out, int w) {
-  const Wall wall(walls, w);
-  WindowLanes<Pack, Mask> found[2];
-  Pack slope[2];
-  int slots = 1;
-  if (walls.arc[w]) {
-    const SphereGapLanes<Pack> g = sphere_gap_of(q, wall);
-    windows<PackLanes>(g, q.lanes(), horizon, live, found[0], found[1]);
-    for (int j = 0; j < 2; ++j) slope[j] = slope_sign<PackLanes>(g, q.lanes(), found[j].start, found[j].end, found[j].margin);
-    slots = 2;
-  } else {
-    const PlaneGapLanes<Pack> g = plane_gap_of(q, wall);
-    found[0] = window<PackLanes>(g, q.lanes(), horizon, live);
-    slope[0] = slope_sign<PackLanes>(g, q.lanes());
-  }
-  for (int j = 0; j < slots; ++j) {
-    const int slot = first_slot(walls, w) + j;
-    const auto& f = found[j];
-    out.open[slot] = f.open & ~(slope[j] < 0);
-    out.start[slot] = f.start, out.end[slot] = f.end, out.margin[slot] = f.margin, out.below[slot] = f.below;
-  }
-}
-
 /// The sign of f' in each lane's window [start, end] of margin m (slope_sign).
 template <Mix mix>
 LANES Pack slope_sign(const Quiver& q, const Wall& w, const Kinds<mix>& kinds, Pack start, Pack end, Pack margin) {
@@ -514,6 +484,49 @@ LANES Mask may_meet_span(const Quiver& q, const Wall& w, const Kinds<mix>& kinds
   return kinds.by_kind(
       [&]() LANES_LAMBDA { return may_meet_span<PackLanes>(w.arc_lanes(), w.slack, q.delta, px - w.cx, py - w.cy, qx - w.cx, qy - w.cy); },
       [&]() LANES_LAMBDA { return may_meet_span<PackLanes>(w.segment_lanes(), w.dir_norm, q.delta, px, py, qx, qy); });
+}
+
+/// The windows of wall w until `horizon`, into its slots.  Lanes whose guide stands
+/// still (u = 0) get no window here: they are handed back.  Two kinds of window are not
+/// opened, since one visit fewer for a lane is one round fewer for all W when it is the last to
+/// finish:
+/// - one in which f' < 0 is certain: the scalar search visits it and passes it (slope_sign = −1
+///   with the window's end cut at the best hit so far, which can only be earlier: −1 at the end
+///   here is −1 there, since for an arc qe and the threshold, rounded, only decrease with the
+///   end, and an inward guide cannot be outward too; for a segment the sign does not depend on
+///   the window);
+/// - one in which the particle cannot reach the wall's span (may_meet_span over the whole
+///   window; about one window a collision in the clover, a circle passed beside its arc): the
+///   scalar search visits it, and either passes it by the same test over a part of it (its end
+///   cut at the best hit), or searches it and finds no collision there, since the test is
+///   certain (a collision is a point within δ of the guide in the span).  Either way the
+///   search goes on with the same best hit, bit for bit.
+LANES void wall_windows(const Quiver& q, const Walls& walls, Pack horizon, Mask live, Windows& out, int w) {
+  const Wall wall(walls, w);
+  WindowLanes<Pack, Mask> found[2];
+  Pack slope[2];
+  Mask passes[2];
+  int slots = 1;
+  if (walls.arc[w]) {
+    const SphereGapLanes<Pack> g = sphere_gap_of(q, wall);
+    windows<PackLanes>(g, q.lanes(), horizon, live, found[0], found[1]);
+    for (int j = 0; j < 2; ++j) {
+      slope[j] = slope_sign<PackLanes>(g, q.lanes(), found[j].start, found[j].end, found[j].margin);
+      passes[j] = ~may_meet_span(q, wall, Kinds<Mix::arcs>{}, found[j].start, found[j].end);
+    }
+    slots = 2;
+  } else {
+    const PlaneGapLanes<Pack> g = plane_gap_of(q, wall);
+    found[0] = window<PackLanes>(g, q.lanes(), horizon, live);
+    slope[0] = slope_sign<PackLanes>(g, q.lanes());
+    passes[0] = ~may_meet_span(q, wall, Kinds<Mix::segments>{}, found[0].start, found[0].end);
+  }
+  for (int j = 0; j < slots; ++j) {
+    const int slot = first_slot(walls, w) + j;
+    const auto& f = found[j];
+    out.open[slot] = f.open & ~(slope[j] < 0) & ~passes[j];
+    out.start[slot] = f.start, out.end[slot] = f.end, out.margin[slot] = f.margin, out.below[slot] = f.below;
+  }
 }
 
 /// BasicArcWall's or BasicSegmentWall's within_span of (x, y).
