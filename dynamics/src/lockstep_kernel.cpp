@@ -510,9 +510,16 @@ LANES void wall_windows(const Quiver& q, const Walls& walls, Pack horizon, Mask 
   if (walls.arc[w]) {
     const SphereGapLanes<Pack> g = sphere_gap_of(q, wall);
     windows<PackLanes>(g, q.lanes(), horizon, live, found[0], found[1]);
+    // (The arc's fields as numbers, its kind as truths: one wall in every lane, so the span
+    // test branches on whether the arc is full or at most half a circle.)
+    const double r = walls.r[w], r2 = r * r;
+    const ArcLanes<double, bool> arc{walls.cx[w], walls.cy[w], r,  r2, r2, walls.slack[w] * r, walls.fx[w], walls.fy[w],
+                                     walls.tx[w], walls.ty[w], walls.sign[w] > 0, walls.full[w] != 0, walls.half[w] != 0};
     for (int j = 0; j < 2; ++j) {
-      slope[j] = slope_sign<PackLanes>(g, q.lanes(), found[j].start, found[j].end, found[j].margin);
-      passes[j] = ~may_meet_span(q, wall, Kinds<Mix::arcs>{}, found[j].start, found[j].end);
+      const Pack start = found[j].start, end = found[j].end;
+      slope[j] = slope_sign<PackLanes>(g, q.lanes(), start, end, found[j].margin);
+      passes[j] = ~may_meet_span<PackLanes>(arc, wall.slack, q.delta, q.guide_x(start) - arc.cx, q.guide_y(start) - arc.cy,
+                                            q.guide_x(end) - arc.cx, q.guide_y(end) - arc.cy);
     }
     slots = 2;
   } else {

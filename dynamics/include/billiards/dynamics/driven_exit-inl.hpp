@@ -248,7 +248,7 @@ template <class L, class FW, class WT, class Num = typename L::Num>
 [[gnu::always_inline]] inline typename L::Truth may_meet_span(const ArcLanes<FW, WT>& w, const Num& slack, const Num& pad,
                                                               const Num& ax, const Num& ay, const Num& bx,
                                                               const Num& by) {
-  auto cross = [](const Num& px, const Num& py, const Num& qx, const Num& qy) __attribute__((always_inline)) { return Num(px * qy - py * qx); };
+  auto cross = [](const auto& px, const auto& py, const auto& qx, const auto& qy) __attribute__((always_inline)) { return Num(px * qy - py * qx); };
   const Num margin = w.r * (slack + pad) + L::splat(16) * L::eps() * w.r * ((L::abs(ax) + L::abs(ay)) + (L::abs(bx) + L::abs(by)));
   const Num neg_margin = L::neg(margin);
   return L::choose(w.full, []() __attribute__((always_inline)) { return L::splat_truth(true); }, [&]() __attribute__((always_inline)) {
