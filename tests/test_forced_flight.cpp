@@ -240,7 +240,9 @@ TEST_CASE("the windows searched in time order find the collision the wall-by-wal
   // state at the hit must carry its phase's sine and cosine.
   // (Elliptic arcs: collision() searches the mapped flight through the unit arc in its windows,
   // the wall-by-wall search scans it: elliptic_exit_time.  Tables of more than
-  // scan::windows_group_walls segments and arcs: their windows are searched group by group.)
+  // scan::windows_group_walls segments and arcs: their windows are searched group by group.
+  // Tables of more than scan::windows_in_time_order_walls: collision() tries only the walls
+  // listed near the guiding line, cell by cell along it through the table's grid.)
   std::vector<std::pair<std::string, dynamics::Table>> tables;
   for (const char* name : {"clover", "l-room", "mushroom", "sinai", "stadium", "annulus", "sinai-ellipse",
                            "elliptic-stadium", "ellipse"})
@@ -248,40 +250,50 @@ TEST_CASE("the windows searched in time order find the collision the wall-by-wal
   tables.emplace_back("twenty-gon", twenty_gon());
   tables.emplace_back("gear of 16 around a disk", gear(dynamics::scan::windows_group_walls / 2, true));
   tables.emplace_back("circle of 24 arcs", circle_of_arcs(dynamics::scan::windows_in_time_order_walls));
-  for (const auto& [name, table] : tables) {
-    for (const double omega : {10 * pi, 40 * pi, 320 * pi, 2560 * pi}) {
-      dynamics::ParticleRng rng(31, std::uint64_t(omega));
-      const PeriodicDriveFlight flight{10 * Vec2(1, 1) / std::sqrt(2.0), omega, 0};
-      DrivenState s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
-      int mismatches = 0, bounces = 0;
-      for (int k = 0; k < 400; ++k) {
-        const double t_end = k % 2 ? s.t + 20 : dynamics::never;
-        dynamics::Hit by_wall;
-        by_wall.t = t_end;
-        for (const auto& w : table.wall_ids()) dynamics::detail::try_wall(table, flight, s, w, by_wall);
-        const auto hit = dynamics::collision(table, flight, s, t_end);
-        // (Both polish the root to rounding: they agree to 5.5e-16 of 1 + t over these runs.)
-        const bool same = hit.wall == by_wall.wall ? std::abs(hit.t - by_wall.t) <= 1e-14 * (1 + std::abs(hit.t))
-                                                   : std::abs(hit.t - by_wall.t) <= 1e-12 * (1 + std::abs(hit.t));  // (a joint)
-        if (!same) {
-          ++mismatches;
-          UNSCOPED_INFO(name << " omega " << omega << " bounce " << k << ": wall " << hit.wall << " at " << hit.t
-                             << ", wall by wall " << by_wall.wall << " at " << by_wall.t);
-        }
-        if (!hit.found()) {
-          CHECK(t_end != dynamics::never);  // (no wall within the horizon)
-          continue;
-        }
-        // The state at the hit takes the drive's sine and cosine from the root search's last
-        // sample, corrected to the hit's phase: as exact as computing them anew.
-        const double phase = double(hit.state.phase);
-        if (std::abs(hit.state.sin_phase - std::sin(phase)) > 1e-15 || std::abs(hit.state.cos_phase - std::cos(phase)) > 1e-15)
-          ++mismatches;
-        dynamics::bounce(flight, s, hit);
-        ++bounces;
+  tables.emplace_back("wavy-1200", geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/wavy-1200.yaml").region);
+  tables.emplace_back("circle of 48 arcs", circle_of_arcs(48));
+  tables.emplace_back("gear of 40 around a disk", gear(40, true));
+  // (Flights off quivering walls too where the guide is walked through the grid: the free
+  // line, within δ of the particle's position relative to the walls.)
+  auto compare = [](const std::string& name, const dynamics::Table& table, const auto& flight, std::uint64_t seed) {
+    dynamics::ParticleRng rng(31, seed);
+    DrivenState s = flight.start(dynamics::sample_microcanonical(table, 1.0, rng));
+    int mismatches = 0, bounces = 0;
+    for (int k = 0; k < 400; ++k) {
+      const double t_end = k % 2 ? s.t + 20 : dynamics::never;
+      dynamics::Hit by_wall;
+      by_wall.t = t_end;
+      for (const auto& w : table.wall_ids()) dynamics::detail::try_wall(table, flight, s, w, by_wall);
+      const auto hit = dynamics::collision(table, flight, s, t_end);
+      // (Both polish the root to rounding: they agree to 5.5e-16 of 1 + t over these runs.)
+      const bool same = hit.wall == by_wall.wall ? std::abs(hit.t - by_wall.t) <= 1e-14 * (1 + std::abs(hit.t))
+                                                 : std::abs(hit.t - by_wall.t) <= 1e-12 * (1 + std::abs(hit.t));  // (a joint)
+      if (!same) {
+        ++mismatches;
+        UNSCOPED_INFO(name << " omega " << flight.omega << " bounce " << k << ": wall " << hit.wall << " at " << hit.t
+                           << ", wall by wall " << by_wall.wall << " at " << by_wall.t);
       }
-      CHECK(mismatches == 0);
-      CHECK(bounces >= 300);
+      if (!hit.found()) {
+        CHECK(t_end != dynamics::never);  // (no wall within the horizon)
+        continue;
+      }
+      // The state at the hit takes the drive's sine and cosine from the root search's last
+      // sample, corrected to the hit's phase: as exact as computing them anew.
+      const double phase = double(hit.state.phase);
+      if (std::abs(hit.state.sin_phase - std::sin(phase)) > 1e-15 || std::abs(hit.state.cos_phase - std::cos(phase)) > 1e-15)
+        ++mismatches;
+      dynamics::bounce(flight, s, hit);
+      ++bounces;
+    }
+    CHECK(mismatches == 0);
+    CHECK(bounces >= 300);
+  };
+  for (const auto& [name, table] : tables) {
+    REQUIRE((table.grid() != nullptr) == (table.wall_count() > std::size_t(dynamics::scan::windows_in_time_order_walls)));
+    for (const double omega : {10 * pi, 40 * pi, 320 * pi, 2560 * pi}) {
+      const Vec2 force = 10 * Vec2(1, 1) / std::sqrt(2.0);
+      compare(name, table, PeriodicDriveFlight{force, omega, 0}, std::uint64_t(omega));
+      if (table.grid()) compare(name + " (quivering walls)", table, dynamics::QuiveringWallFlight{force, omega, 0}, std::uint64_t(omega));
     }
   }
 }

@@ -151,11 +151,15 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
   BasicHit<Real> best;
   best.t = t_end;
   PhaseSample<Real> phase;  // the drive's phase sampled at the best root, if it was
-  // Wall by wall for creeping guides (creep's jumps are interleaved with the windows of one
-  // wall at a time) and for tables of many walls, where each wall's disk test against the
-  // best hit so far culls nearly all of them, while the windows of every wall along the guiding
-  // line would be computed and sorted (wavy-1200: 25× slower).
-  if (quiver.creeping || table.wall_count() > scan::windows_in_time_order_walls) {
+  // A table of many walls (it has a grid): those listed near the guiding line, cell by cell
+  // along it, each by its own scan (the particle stays within δ of the guide).  Wall by wall
+  // for creeping guides in the others (creep's jumps are interleaved with the windows of one
+  // wall at a time).
+  static_assert(scan::windows_in_time_order_walls == BasicTable<Real>::grid_threshold);
+  if (table.grid()) {
+    const Vec2 g0(double(quiver.g0.x()), double(quiver.g0.y())), u(double(quiver.u.x()), double(quiver.u.y()));
+    detail::tube_collision(table, *this, g0, u, double(quiver.s.t), double(quiver.delta), best);
+  } else if (quiver.creeping) {
     detail::try_every_wall(table, *this, best);
   } else {
     first_hit_in_windows(table, quiver, best, phase);

@@ -6,6 +6,7 @@
 #include "billiards/dynamics/free_flight.hpp"
 #include "billiards/dynamics/table.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -80,9 +81,88 @@ inline void try_every_wall(const BasicTable<Real>& table, const Scan& scan, Basi
   table.for_each_kind([&](const auto& walls, int kind) { try_walls(walls, kind, scan, best); });
 }
 
-/// Straight flights through the grid (Amanatides–Woo traversal): walls are tested cell by
-/// cell and the search stops at the first cell that contains the best hit so far.
+/// The grid's cells (i, j) that the line p + v (t − t0), t ≥ t0, crosses, in the order in which
+/// it crosses them (Amanatides–Woo), with the times it enters and leaves each: visit(i, j,
+/// enter, leave) until it returns true or the line leaves the grid widened by `reach` cells on
+/// every side (cells beyond the grid's have indices outside it and hold no walls).  The cell of
+/// p is clamped to that widened grid: a particle on a wall may sit a hair outside.
+template <class Grid, class Visit>
+void walk_cells(const Grid& g, const Vec2& p, const Vec2& v, double t0, int reach, Visit visit) {
+  const Vec2 rel = (p - g.origin).cwiseQuotient(g.cell);
+  int i = std::clamp(int(std::floor(rel.x())), -reach, g.nx - 1 + reach);
+  int j = std::clamp(int(std::floor(rel.y())), -reach, g.ny - 1 + reach);
+  const int step_i = v.x() > 0 ? 1 : -1, step_j = v.y() > 0 ? 1 : -1;
+  // Time at which the line crosses the next vertical / horizontal cell line.
+  auto next_line = [&](int k, int step, double origin, double cell, double x, double vk) {
+    if (vk == 0) return never;
+    return t0 + (origin + (k + (step > 0 ? 1 : 0)) * cell - x) / vk;
+  };
+  double tx = next_line(i, step_i, g.origin.x(), g.cell.x(), p.x(), v.x());
+  double ty = next_line(j, step_j, g.origin.y(), g.cell.y(), p.y(), v.y());
+  const double dtx = v.x() != 0 ? g.cell.x() / std::abs(v.x()) : never;
+  const double dty = v.y() != 0 ? g.cell.y() / std::abs(v.y()) : never;
+  for (double enter = t0;; enter = std::min(tx, ty)) {
+    if (visit(i, j, enter, std::min(tx, ty))) return;
+    if (tx < ty) {
+      i += step_i;
+      tx += dtx;
+    } else {
+      j += step_j;
+      ty += dty;
+    }
+    if (i < -reach || j < -reach || i >= g.nx + reach || j >= g.ny + reach) return;
+  }
+}
+
+/// Straight flights through the grid (walk_cells): walls are tested cell by cell and the search
+/// stops at the first cell that contains the best hit so far.
 Hit grid_collision(const Table& table, const FreeFlight& flight, const State& s, double t_end);
+
+/// The first hit before best.t among the walls of a table with a grid by a flight that stays
+/// within `reach` of the line p + v (t − t0) (a driven flight: its guide, within δ): each wall
+/// listed in a cell within `reach` of the line's stretch in a cell it crosses, tried once
+/// (scan.exit_time), cell after cell along the line until it leaves a cell after the best hit
+/// so far.  (A wall hit at t lies within reach of the line's point at t, in the stretch of a
+/// cell the walk has entered by t: once the line leaves a cell after the best hit, no wall not
+/// yet tried is hit earlier.)
+template <class Real, class Scan>
+void tube_collision(const BasicTable<Real>& table, const Scan& scan, const Vec2& p, const Vec2& v, double t0,
+                    double reach, BasicHit<Real>& best) {
+  const typename BasicTable<Real>::Grid& g = *table.grid();
+  // (With a margin for the walls' boxes, padded by the tolerance only, and for the rounding
+  // of the line's points.)
+  const double d = reach + 4 * table.tolerance();
+  const int r = int(std::ceil(d / std::min(g.cell.x(), g.cell.y())));
+  int first[BasicTable<Real>::kind_count];
+  int walls = 0;
+  table.for_each_kind([&](const auto& kind, int k) { first[k] = walls, walls += int(kind.size()); });
+  std::vector<bool> tried(static_cast<std::size_t>(walls));
+  // The cells of the box of the line's stretch [enter, leave], widened by d, along one axis.
+  auto cells = [&](int axis, double enter, double leave, int& lo, int& hi) {
+    const double a = p[axis] + (v[axis] == 0 ? 0 : v[axis] * (enter - t0));
+    const double b = v[axis] == 0 ? p[axis] : p[axis] + v[axis] * (leave - t0);
+    const int n = axis == 0 ? g.nx : g.ny;
+    lo = std::max(0, int(std::floor((std::min(a, b) - d - g.origin[axis]) / g.cell[axis])));
+    hi = std::min(n - 1, int(std::floor((std::max(a, b) + d - g.origin[axis]) / g.cell[axis])));
+  };
+  walk_cells(g, p, v, t0, r, [&](int, int, double enter, double leave) {
+    int x0, x1, y0, y1;
+    cells(0, enter, leave, x0, x1);
+    cells(1, enter, leave, y0, y1);
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const std::size_t c = std::size_t(y) * g.nx + x;
+        for (int k = g.start[c]; k < g.start[c + 1]; ++k) {
+          const WallId& wall = g.walls[k];
+          const auto flat = std::size_t(first[wall.kind] + wall.index);
+          if (tried[flat]) continue;
+          tried[flat] = true;
+          try_wall(table, scan, wall, best);
+        }
+      }
+    return best.t <= leave;
+  });
+}
 
 }  // namespace detail
 
