@@ -4,8 +4,10 @@
 //                  driven alike;
 //   CGAL AABB    — the mesh's collisions found by CGAL's AABB_tree::first_intersection (the
 //                  face just left skipped), instead of the toolkit's BVH and watertight test.
-// Driven runs use the ensemble code of `billiard run` (64 particles interleaved 4 at a time,
-// one thread, flights not re-verified), F = 10 along (1, 1[, 1])/√d, ω = 320π, E = 1/2.
+// "toolkit" runs 64 free particles one after the other (Table3::collision); "toolkit ensemble"
+// and the driven runs use the ensemble code of `billiard run` (64 particles, one thread,
+// flights not re-verified: free ones sixteen at a time, in lanes or a mesh's walks together,
+// driven ones one at a time), F = 10 along (1, 1[, 1])/√d, ω = 320π, E = 1/2.
 // Usage: bench_free3 [free collisions per shape, default 5e6] [driven, default a tenth]
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
@@ -130,13 +132,15 @@ double driven3(const geometry3::Region3& region, double collisions) {
 double sinai2(double collisions) {
   const auto shape = geometry::load_shape(BILLIARDS_SOURCE_DIR "/shapes/sinai.yaml");
   const dynamics::Table table(shape.region);
-  const dynamics::FreeFlight flight;
-  dynamics::RunOptions opt;
-  opt.record_times = {collisions / 64 * geometry::mean_free_path(geometry::measures_of(shape.region))};
-  const auto initial = dynamics::microcanonical(table, flight, 1.0, 1);
-  const auto start = std::chrono::steady_clock::now();
-  const auto res = dynamics::run_ensemble(table, flight, initial, opt, 64, 1);
-  return res.collisions() / seconds_since(start);
+  return ensemble_rate(table, dynamics::FreeFlight{}, geometry::mean_free_path(geometry::measures_of(shape.region)),
+                       collisions);
+}
+
+/// The free ensemble (sixteen particles in lanes, or a mesh's sixteen walks together).
+double free3(const geometry3::Region3& region, double collisions) {
+  const dynamics::Table3 table(region);
+  return ensemble_rate(table, dynamics::FreeFlight3{}, geometry::mean_free_path(geometry3::measures_of(region)),
+                       collisions);
 }
 
 }  // namespace
@@ -151,6 +155,7 @@ int main(int argc, char** argv) {
     const auto shape = geometry3::load_shape3(fmt::format("{}/shapes/3d/{}.yaml", BILLIARDS_SOURCE_DIR, name));
     const auto [rate, escapes] = toolkit3(shape.region, n);
     fmt::print("{}, toolkit: {:.2f} M collisions/s, {} escapes\n", name, rate / 1e6, escapes);
+    fmt::print("{}, toolkit ensemble: {:.2f} M collisions/s\n", name, free3(shape.region, n) / 1e6);
     if (const auto* mesh = std::get_if<geometry3::TriangleMesh>(&shape.region.outer)) {
       const auto [cgal, cgal_escapes] = cgal_aabb(*mesh, shape.region, n / 10);
       fmt::print("{}, CGAL AABB_tree first_intersection: {:.3f} M collisions/s, {} escapes; toolkit / CGAL = {:.1f}\n",

@@ -141,6 +141,25 @@ holes:
   return tables;
 }
 
+/// The 3-D tables with a mesh, whose flights' BVH walks run together: the L-prism, the L-prism
+/// with two balls inside (spheres asked after the triangles) and the bumpy sphere of 100 820
+/// triangles.
+std::vector<std::unique_ptr<Table3Of>> mesh_tables() {
+  const std::string dir = BILLIARDS_SOURCE_DIR "/shapes/3d";
+  std::vector<std::unique_ptr<Table3Of>> tables;
+  for (const char* shape : {"l-prism", "bumpy-100k"})
+    tables.push_back(std::make_unique<Table3Of>(shape, geometry3::load_shape3(dir + "/" + shape + ".yaml")));
+  tables.push_back(std::make_unique<Table3Of>("l-prism-of-balls", geometry3::parse_shape3(R"(name: l-prism-of-balls
+dimension: 3
+boundary:
+  mesh: l-prism.off
+holes:
+  - ball: {center: [0.5, 0.5, 1], radius: 0.3}
+  - ball: {center: [1.5, 0.5, 0.6], radius: 0.2}
+)", "l-prism-of-balls", {}, dir)));
+  return tables;
+}
+
 /// Batches of every size 1..16 of states along the flight's orbits in the table and along
 /// straight orbits (on every wall, leaving it in every direction: a strong field's orbits from
 /// a fresh start may circle without meeting one), the states taken in turn, each state's horizon
@@ -238,6 +257,10 @@ TEST_CASE("free lock step in 3-D: each batch's hits are the scalar search's, bit
   for (const auto& t : sphere_and_plane_tables()) check_batches(t->name, t->table, FreeFlight3{});
 }
 
+TEST_CASE("free lock step in 3-D: the BVH walks of a batch run together find the scalar search's hits, bit for bit, in meshes") {
+  for (const auto& t : mesh_tables()) check_batches(t->name, t->table, FreeFlight3{});
+}
+
 TEST_CASE("free lock step in 3-D: the kernel itself finds the hits on planes and spheres, at the scalar search's times") {
   for (const auto& t : sphere_and_plane_tables()) {
     const auto& table = t->table;
@@ -311,7 +334,7 @@ TEST_CASE("free lock step: the kernel itself finds the hits on elliptic arcs, at
   }
 }
 
-TEST_CASE("lock step: tables with a grid, a mesh, or too many walls of a kind, or no kernel, are left to the scalar search") {
+TEST_CASE("lock step: tables with a grid, or too many walls of a kind, or no kernel, are left to the scalar search (meshes walk together)") {
   const auto wavy = table_of("wavy-1200");
   REQUIRE(wavy.grid() != nullptr);
   for (const auto& [name, kernel] : kernels<FreeFlight>()) CHECK_FALSE(dynamics::FreeLockstepTable(wavy, FreeFlight{}, kernel).usable());
@@ -320,7 +343,7 @@ TEST_CASE("lock step: tables with a grid, a mesh, or too many walls of a kind, o
   // BILLIARDS_SIMD=scalar
   CHECK_FALSE(dynamics::FreeLockstepTable(table_of("clover"), FreeFlight{}, nullptr).usable());
   CHECK_FALSE(dynamics::MagneticLockstepTable(table_of("clover"), MagneticFlight{1}, nullptr).usable());
-  // 3-D: a mesh, or 25 balls.
+  // 3-D: 25 balls; a mesh walks its flights together with any kernel or none.
   const auto prism = geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/l-prism.yaml");
   const dynamics::Table3 mesh(prism.region);
   REQUIRE_FALSE(mesh.triangles().empty());
@@ -331,11 +354,12 @@ TEST_CASE("lock step: tables with a grid, a mesh, or too many walls of a kind, o
   const dynamics::Table3 crowded(many.region);
   REQUIRE(crowded.spheres().size() == 25);
   for (const auto& [name, kernel] : kernels<FreeFlight3>()) {
-    CHECK_FALSE(dynamics::FreeLockstepTable3(mesh, FreeFlight3{}, kernel).usable());
+    CHECK(dynamics::FreeLockstepTable3(mesh, FreeFlight3{}, kernel).usable());
     CHECK_FALSE(dynamics::FreeLockstepTable3(crowded, FreeFlight3{}, kernel).usable());
   }
   const auto sinai3 = geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/sinai3.yaml");
   CHECK_FALSE(dynamics::FreeLockstepTable3(dynamics::Table3(sinai3.region), FreeFlight3{}, nullptr).usable());
+  CHECK(dynamics::FreeLockstepTable3(mesh, FreeFlight3{}, nullptr).usable());
 }
 
 TEST_CASE("lock step: free and magnetic ensembles equal simulate particle by particle, for every target and 1, 2 and 3 threads") {
@@ -357,7 +381,10 @@ TEST_CASE("lock step: free and magnetic ensembles equal simulate particle by par
           check_ensemble_equals_simulate(dynamics::MagneticLockstepTable(table, flight, kernel), table, flight, opt, 40);
         }
     }
-  for (const auto& t : sphere_and_plane_tables())
+  auto tables3 = sphere_and_plane_tables();
+  for (auto& t : mesh_tables())
+    if (t->name != "bumpy-100k") tables3.push_back(std::move(t));
+  for (const auto& t : tables3)
     for (const bool verify : {false, true}) {
       dynamics::RunOptions opt;
       opt.record_times = {0, 0.5, 10, 100};

@@ -81,6 +81,11 @@ bool lanes_search(const Table3& table) {
   return known && table.planes().size() <= most && table.spheres().size() <= most;
 }
 
+/// Does the table search the flights by its BVH's walks run together (a mesh's triangles)?
+bool walks_together(const Table&) { return false; }
+bool walks_together(const Table3& table) { return !table.triangles().empty(); }
+static_assert(free_lanes::lanes <= Table3::max_together);
+
 }  // namespace
 
 free_lanes::Rays free_lanes::rays_of(const State* const* states, const double* t_end, int n) {
@@ -116,13 +121,16 @@ std::pair<Vec3, Vec3> contact_of(const Table3& table, const FlightHit<FreeFlight
 
 template <int Dim>
 BasicFreeLockstepTable<Dim>::BasicFreeLockstepTable(const TableT& table, const Flight& flight, Kernel kernel)
-    : table_(&table), flight_(&flight), kernel_(kernel), usable_(kernel && lanes_search(table)) {
-  if (usable_) walls_ = free_lanes::walls_of(table);
+    : table_(&table), flight_(&flight), kernel_(kernel), walks_together_(walks_together(table)),
+      usable_(walks_together_ || (kernel && lanes_search(table))) {
+  if (usable_ && !walks_together_) walls_ = free_lanes::walls_of(table);
 }
 
 template <int Dim>
 void BasicFreeLockstepTable<Dim>::collisions(const typename Flight::State* const* states, const double* t_end, int n,
                                              FlightHit<Flight>* hits) const {
+  if constexpr (Dim == 3)
+    if (walks_together_) return table_->collisions(*flight_, states, t_end, n, hits);
   const auto in = free_lanes::rays_of(states, t_end, n);
   free_lanes::Hits out;
   kernel_(walls_, in, out);

@@ -4,7 +4,10 @@
 #include "billiards/dynamics/certified_scan.hpp"
 #include "billiards/dynamics/magnetic_flight.hpp"
 
+#include <boost/container/static_vector.hpp>
+
 #include <algorithm>
+#include <cassert>
 
 namespace billiards::dynamics {
 
@@ -45,14 +48,29 @@ Table3::BasicTable(const Region3& region, std::int64_t simd_target) : region_(re
 
 namespace {
 
-/// The earliest exit time `exit(triangle)` of a leaf's triangles [first, first + count), kept in
-/// `best` where it is earlier.
-template <class Exit>
-void ask_leaf(const std::vector<TriangleWall>& triangles, int first, int count, Hit3& best, Exit exit) {
+/// The earliest exit time `exit(wall, best.t)` of walls [first, first + count) of a kind, kept
+/// in `best` where it is earlier.
+template <class W, class Exit>
+void ask_walls(const std::vector<W>& walls, int kind, int first, int count, Hit3& best, Exit exit) {
   for (int i = first; i < first + count; ++i) {
-    const double t = exit(triangles[i], best.t);
-    if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
+    const double t = exit(walls[i], best.t);
+    if (t < best.t) best.t = t, best.wall = {kind, i};
   }
+}
+template <class W, class Exit>
+void ask_walls(const std::vector<W>& walls, int kind, Hit3& best, Exit exit) {
+  ask_walls(walls, kind, 0, int(walls.size()), best, exit);
+}
+
+/// Asks the walls of every kind but the triangles one by one: those before the triangles in
+/// WallKinds3 (the planes) or those after them (the spheres), as `collision` asks them
+/// around the triangles' walk.
+template <class Exit>
+void ask_walls_beside_triangles(const Table3& table, bool before, Hit3& best, Exit exit) {
+  table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+    if constexpr (!std::is_same_v<W, TriangleWall>)
+      if ((kind < wall_kind3::triangle) == before) ask_walls(walls, kind, best, exit);
+  });
 }
 
 /// Starts fetching what an exit test reads of a leaf's triangles [first, first + count): the
@@ -78,18 +96,28 @@ double time_to_leave(const Tube3& tube, const Vec3& lo, const Vec3& hi) {
 
 }  // namespace
 
-/// Walks the BVH along the ray `origin + τ dir` (τ after `t0`), boxes grown by `pad`, and
-/// keeps in `best` the earliest exit time `exit(triangle)` found.
+/// The walk of the BVH along the ray `origin + τ dir` (τ after `t0`), boxes grown by `pad`,
+/// that keeps in `best` the earliest exit time `exit(triangle)` found, on `stack`.
+template <class Exit>
+auto Table3::triangle_walk(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
+                           Bvh::Pending* stack) const {
+  const auto& walls = triangles();
+  return Bvh::Walk(
+      bvh_, origin, dir, pad, best.t - t0,
+      [&walls, &best, t0, exit](int first, int count) {
+        ask_walls(walls, wall_kind3::triangle, first, count, best, exit);
+        return best.t - t0;
+      },
+      [&walls](int first, int count) { fetch_leaf(walls, first, count); }, stack);
+}
+
 template <class Exit>
 void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best,
                               Exit exit) const {
-  bvh_.walk(
-      origin, dir, pad, best.t - t0,
-      [&](int first, int count) {
-        ask_leaf(triangles(), first, count, best, exit);
-        return best.t - t0;
-      },
-      [&](int first, int count) { fetch_leaf(triangles(), first, count); });
+  Bvh::Pending stack[Bvh::stack_size];
+  auto walk = triangle_walk(origin, dir, pad, t0, best, exit, stack);
+  while (walk.step()) {
+  }
 }
 
 /// The triangles a helix (Gyration) may cross, an arc at a time in time order: an arc of
@@ -130,7 +158,7 @@ void Table3::search_triangles_along_helix(const Helix& helix, double t0, Hit3& b
         [&](int first, int count) {
           if (std::find(seen, seen + seen_count, first) != seen + seen_count) return std::min(h, best.t - ta);
           if (seen_count < max_seen) seen[seen_count++] = first;
-          ask_leaf(triangles(), first, count, best, exit_before_arcs_end);
+          ask_walls(triangles(), wall_kind3::triangle, first, count, best, exit_before_arcs_end);
           return std::min(h, best.t - ta);
         },
         [&](int first, int count) { fetch_leaf(triangles(), first, count); });
@@ -180,49 +208,62 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
   best.t = t_end;
   if constexpr (is_straight<Flight> || requires { flight.scan_from(s).tube(); }) {
     const auto scan = flight.scan_from(s);
-    for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
-      if constexpr (std::is_same_v<W, TriangleWall>) {
-        const auto exit = [&](const TriangleWall& w, double t) { return scan.exit_time(w, t); };
-        if constexpr (is_straight<Flight>) search_triangles(s.x, s.v, 0, s.t, best, exit);
-        else search_triangles_along_helix(scan, s.t, best, exit);
-      } else {
-        for (int i = 0, n = int(walls.size()); i < n; ++i) {
-          const double t = scan.exit_time(walls[i], best.t);
-          if (t < best.t) best.t = t, best.wall = {kind, i};
-        }
-      }
-    });
+    const auto exit = [&](const auto& w, double t) { return scan.exit_time(w, t); };
+    ask_walls_beside_triangles(*this, true, best, exit);
+    if constexpr (is_straight<Flight>) search_triangles(s.x, s.v, 0, s.t, best, exit);
+    else search_triangles_along_helix(scan, s.t, best, exit);
+    ask_walls_beside_triangles(*this, false, best, exit);
   } else if constexpr (!std::is_same_v<Flight, PeriodicDriveFlight3>) {
-    for_each_kind([&](const auto& walls, int kind) {
-      for (int i = 0, n = int(walls.size()); i < n; ++i) {
-        const double t = flight.exit_time(s, walls[i], best.t);
-        if (t < best.t) best.t = t, best.wall = {kind, i};
-      }
-    });
+    const auto exit = [&](const auto& w, double t) { return flight.exit_time(s, w, t); };
+    for_each_kind([&](const auto& walls, int kind) { ask_walls(walls, kind, best, exit); });
   } else {
     const DriveQuiver3 q(flight, s);
     const WindowedWalls3 windowed(*this);
     const bool by_windows = !q.creeping && windowed.count() <= scan::windows_in_time_order_walls;
     if (by_windows) first_hit_in_windows(windowed, q, t_end, best);
+    const auto exit = [&](const auto& w, double t) { return flight.exit_time(s, w, t); };
     // Wall by wall: every kind but the triangles (below), or those without windows.
     for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
-      if constexpr (!std::is_same_v<W, TriangleWall>) {
-        if (by_windows && Windowed<DriveQuiver3>::template along<W>::value) return;
-        for (int i = 0, n = int(walls.size()); i < n; ++i) {
-          const double t = flight.exit_time(s, walls[i], best.t);
-          if (t < best.t) best.t = t, best.wall = {kind, i};
-        }
-      }
+      if constexpr (!std::is_same_v<W, TriangleWall>)
+        if (!by_windows || !Windowed<DriveQuiver3>::template along<W>::value) ask_walls(walls, kind, best, exit);
     });
     // The particle stays within δ = |F|/(mω²) of its guiding line: boxes grown by δ (and the
     // scan's rounding band) along that line hold every triangle it can cross.
-    search_triangles(q.g0, q.u, q.delta + 2 * slack_, s.t, best,
-                     [&](const TriangleWall& w, double t) { return flight.exit_time(s, w, t); });
+    search_triangles(q.g0, q.u, q.delta + 2 * slack_, s.t, best, exit);
   }
-  if (!best.found()) return best;
-  best.state = flight.advance(s, best.t);
-  std::tie(best.point, best.normal) = contact(best.wall, best.state.x);
+  complete(flight, s, best);
   return best;
+}
+
+template <class Flight>
+void Table3::complete(const Flight& flight, const typename Flight::State& s, FlightHit<Flight>& hit) const {
+  if (!hit.found()) return;
+  hit.state = flight.advance(s, hit.t);
+  std::tie(hit.point, hit.normal) = contact(hit.wall, hit.state.x);
+}
+
+void Table3::collisions(const FreeFlight3& flight, const State3* const* states, const double* t_end, int n,
+                        FlightHit<FreeFlight3>* hits) const {
+  assert(n <= max_together);
+  boost::container::static_vector<StraightScan3, max_together> scans;
+  const auto exit_of = [&scans](int i) { return [&scan = scans[i]](const auto& w, double t) { return scan.exit_time(w, t); }; };
+  for (int i = 0; i < n; ++i) {
+    scans.emplace_back(*states[i]);
+    hits[i] = {};
+    hits[i].t = t_end[i];
+    ask_walls_beside_triangles(*this, true, hits[i], exit_of(i));
+  }
+  Bvh::Pending stacks[max_together][Bvh::stack_size];
+  const auto walk_of = [&](int i) {
+    return triangle_walk(states[i]->x, states[i]->v, 0, states[i]->t, hits[i], exit_of(i), stacks[i]);
+  };
+  boost::container::static_vector<decltype(walk_of(0)), max_together> walks;
+  for (int i = 0; i < n; ++i) walks.push_back(walk_of(i));
+  Bvh::walk_together(walks.data(), n);
+  for (int i = 0; i < n; ++i) {
+    ask_walls_beside_triangles(*this, false, hits[i], exit_of(i));
+    complete(flight, *states[i], hits[i]);
+  }
 }
 
 template FlightHit<FreeFlight3> Table3::collision(const FreeFlight3&, const State3&, double) const;

@@ -7,6 +7,7 @@
 #include "billiards/geometry3/region3.hpp"
 
 #include <bit>
+#include <limits>
 #include <vector>
 
 #ifdef __SSE2__
@@ -48,6 +49,23 @@ class Bvh {
   /// box is entered, so that its triangles may be fetched from memory meanwhile.
   template <class Leaf, class Fetch>
   void walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const;
+  /// A child entered and not yet searched, on a walk's stack.
+  struct Pending {
+    int child;
+    double t_in;  // where the ray enters its box
+  };
+  /// The most children a walk's stack holds: the binary build's depth bound (from depth 32 on
+  /// it splits at the median: at most 31 more levels), each node popped pushing at most `width`.
+  static constexpr int max_depth = 64, stack_size = (width - 1) * max_depth + 1;
+  /// The same walk a step at a time (a node's children tested, or a leaf asked), on a stack
+  /// of stack_size entries: `walk` runs one to its end; `walk_together` runs several in turns.
+  template <class Leaf, class Fetch>
+  class Walk;
+  /// Runs the walks a step each in turn until every one has ended, so that the nodes and
+  /// triangles one walk fetches arrive while the others step (a walk alone waits for each
+  /// fetch); each walk takes the steps it takes alone.
+  template <class W>
+  static void walk_together(W* walks, int n);
 
  private:
   /// Binary nodes of the build, before they are gathered into nodes of `width`.
@@ -58,9 +76,6 @@ class Bvh {
     for (std::size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(reinterpret_cast<const char*>(&n) + line);
   }
 
-  /// The binary build's depth bound (from depth 32 on it splits at the median: at most 31 more
-  /// levels), and with it the walk's stack: each node popped pushes at most `width` children.
-  static constexpr int max_depth = 64, stack_size = (width - 1) * max_depth + 1;
   std::vector<Node> nodes_;
   std::vector<int> order_;
   bvh_lanes::Kernel slab_test_ = nullptr;
@@ -117,46 +132,76 @@ struct BvhRay : bvh_lanes::Ray {
 }  // namespace detail
 
 template <class Leaf, class Fetch>
-void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const {
-  if (nodes_.empty()) return;
-  const detail::BvhRay ray(origin, dir, pad);
-  struct Entry {
-    int child;
-    double t_in;  // where the ray enters its box
-  };
-  Entry stack[stack_size];
-  int top = 0, child = 0;  // the node or leaf searched next
-  for (;;) {
-    if (child < 0) {
-      const int code = ~child;
-      tau_max = leaf(code / max_leaf, code % max_leaf + 1);
-    } else {
-      const Node& node = nodes_[child];
-      double t_in[width];
-      // Push the children entered, farthest first (insertion by t_in), and search the nearest
-      // next, so that the bound shrinks early; the others are fetched meanwhile.
-      const int bottom = top;
-      const float* bound = &node.bound[0][0][0];
-      const unsigned entered =
-          slab_test_ ? slab_test_(bound, ray, tau_max, t_in) : detail::slab_test<detail::PairLanes>(bound, ray, tau_max, t_in);
-      for (unsigned mask = entered; mask; mask &= mask - 1) {
-        const int i = std::countr_zero(mask);
-        if (const int c = node.child[i]; c >= 0) prefetch(nodes_[c]);
-        else fetch(~c / max_leaf, ~c % max_leaf + 1);
-        int j = top++;
-        for (; j > bottom && stack[j - 1].t_in < t_in[i]; --j) stack[j] = stack[j - 1];
-        stack[j] = {node.child[i], t_in[i]};
-      }
-      if (top > bottom) {  // (entered, so t_in ≤ tau_max)
-        child = stack[--top].child;
-        continue;
-      }
+class Bvh::Walk {
+ public:
+  Walk(const Bvh& bvh, const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
+       Pending* stack)
+      : bvh_(&bvh), ray_(origin, dir, pad), tau_max_(tau_max), child_(bvh.nodes_.empty() ? ended : 0), leaf_(leaf),
+        fetch_(fetch), stack_(stack) {}
+  /// Searches the node or leaf next (false: the walk has ended, nothing is left).
+  bool step() {
+    if (child_ == ended) return false;
+    if (child_ < 0) {
+      const int code = ~child_;
+      tau_max_ = leaf_(code / max_leaf, code % max_leaf + 1);
+    } else if (enter_children()) {
+      return true;
     }
     // Next, the nearest entry left that is not beyond a hit found since it was pushed.
     do {
-      if (top == 0) return;
-    } while (stack[--top].t_in > tau_max);
-    child = stack[top].child;
+      if (top_ == 0) return (child_ = ended), false;
+    } while (stack_[--top_].t_in > tau_max_);
+    child_ = stack_[top_].child;
+    return true;
+  }
+
+ private:
+  static constexpr int ended = std::numeric_limits<int>::min();  // (no leaf's code)
+  /// Pushes the children of node child_ that the ray enters, farthest first (insertion by
+  /// t_in), and makes the nearest the next, so that the bound shrinks early; the others are
+  /// fetched meanwhile.  False where it enters none.
+  bool enter_children() {
+    const Node& node = bvh_->nodes_[child_];
+    double t_in[width];
+    const int bottom = top_;
+    const float* bound = &node.bound[0][0][0];
+    const unsigned entered = bvh_->slab_test_ ? bvh_->slab_test_(bound, ray_, tau_max_, t_in)
+                                              : detail::slab_test<detail::PairLanes>(bound, ray_, tau_max_, t_in);
+    for (unsigned mask = entered; mask; mask &= mask - 1) {
+      const int i = std::countr_zero(mask);
+      if (const int c = node.child[i]; c >= 0) prefetch(bvh_->nodes_[c]);
+      else fetch_(~c / max_leaf, ~c % max_leaf + 1);
+      int j = top_++;
+      for (; j > bottom && stack_[j - 1].t_in < t_in[i]; --j) stack_[j] = stack_[j - 1];
+      stack_[j] = {node.child[i], t_in[i]};
+    }
+    if (top_ == bottom) return false;
+    child_ = stack_[--top_].child;  // (entered, so t_in ≤ tau_max)
+    return true;
+  }
+
+  const Bvh* bvh_;
+  detail::BvhRay ray_;
+  double tau_max_;
+  int top_ = 0, child_;  // the node or leaf searched next
+  Leaf leaf_;
+  Fetch fetch_;
+  Pending* stack_;
+};
+
+template <class Leaf, class Fetch>
+void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const {
+  Pending stack[stack_size];
+  Walk<Leaf, Fetch> w(*this, origin, dir, pad, tau_max, leaf, fetch, stack);
+  while (w.step()) {
+  }
+}
+
+template <class W>
+void Bvh::walk_together(W* walks, int n) {
+  for (bool any = true; any;) {
+    any = false;
+    for (int i = 0; i < n; ++i) any |= walks[i].step();
   }
 }
 

@@ -56,8 +56,9 @@ Rays3 rays_of(const State3* const* states, const double* t_end, int n);
 
 /// A table whose straight flights can be searched in lock step: in 2-D segments, arcs and
 /// elliptic arcs without a grid (at most BasicTable::grid_threshold walls) and at most
-/// max_walls of each kind, in 3-D at most max_walls planes and max_walls spheres (no mesh);
-/// ready for `collisions`.
+/// max_walls of each kind, in 3-D at most max_walls planes and max_walls spheres (no mesh),
+/// or a mesh, whose flights' BVH walks run together instead (Table3::collisions); ready for
+/// `collisions`.
 template <int Dim>
 class BasicFreeLockstepTable {
  public:
@@ -65,7 +66,7 @@ class BasicFreeLockstepTable {
   using Flight = BasicFreeFlight<double, Dim>;
   using Kernel = typename free_lanes::Of<Dim>::Kernel;
   static constexpr int lanes = free_lanes::lanes;
-  /// Not `usable` when the table is not one of those, or the kernel is none.
+  /// Not `usable` when the table is not one of those, or the kernel is none (a mesh needs none).
   BasicFreeLockstepTable(const TableT& table, const Flight& flight, Kernel kernel = free_lanes::chosen_kernel<Dim>());
   bool usable() const { return usable_; }
   /// hits[i] = collision(table, flight, *states[i], t_end[i]) for 0 < n ≤ lanes: the same hits,
@@ -77,7 +78,8 @@ class BasicFreeLockstepTable {
   const Flight* flight_;
   Kernel kernel_;
   typename free_lanes::Of<Dim>::Walls walls_;
-  bool usable_ = false;
+  bool walks_together_;
+  bool usable_;
 };
 using FreeLockstepTable = BasicFreeLockstepTable<2>;
 using FreeLockstepTable3 = BasicFreeLockstepTable<3>;

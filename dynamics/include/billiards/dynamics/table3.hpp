@@ -61,6 +61,13 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   /// t_end = never, found() == false means an escape.
   template <class Flight>
   FlightHit<Flight> collision(const Flight& flight, const typename Flight::State& s, double t_end = never) const;
+  /// The most flights `collisions` searches at once.
+  static constexpr int max_together = 16;
+  /// hits[i] = collision(flight, *states[i], t_end[i]) for i < n ≤ max_together, the BVH walks
+  /// of the flights run together (Bvh::walk_together, each its own walk): the same hits, bit
+  /// for bit, with the triangles' fetches from memory overlapped.
+  void collisions(const FreeFlight3& flight, const State3* const* states, const double* t_end, int n,
+                  FlightHit<FreeFlight3>* hits) const;
   /// Is x in the closed region (the independent point-in-region test of geometry3)?
   bool contains(const Vec3& x) const { return geometry3::contains(region_, x); }
   const std::vector<PlaneWall>& planes() const { return walls<PlaneWall>(); }
@@ -90,9 +97,15 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
 
  private:
   template <class Exit>
+  auto triangle_walk(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
+                     Bvh::Pending* stack) const;
+  template <class Exit>
   void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const;
   template <class Helix, class Exit>
   void search_triangles_along_helix(const Helix& helix, double t0, Hit3& best, Exit exit) const;
+  /// The hit's state and contact, where a hit was found.
+  template <class Flight>
+  void complete(const Flight& flight, const typename Flight::State& s, FlightHit<Flight>& hit) const;
 
   const geometry3::Region3& region_;
   Bvh bvh_;
