@@ -48,17 +48,24 @@ double straight_exit_time(const State3& s, const Ray& ray, const TriangleWall& w
   if (beyond >= 0) return w.normal.dot(s.v) > 0 && w.within_span(s.x) ? s.t : never;
   // Strictly on the region's side: the watertight test, for crossings ahead only.  An outward
   // crossing has all edge functions ≤ 0 and det < 0 (counter-clockwise seen from outside).
-  const Vec3 a = w.p[0] - ray.origin, b = w.p[1] - ray.origin, c = w.p[2] - ray.origin;
-  const double ax = a[ray.kx] - ray.sx * a[ray.kz], ay = a[ray.ky] - ray.sy * a[ray.kz];
-  const double bx = b[ray.kx] - ray.sx * b[ray.kz], by = b[ray.ky] - ray.sy * b[ray.kz];
-  const double cx = c[ray.kx] - ray.sx * c[ray.kz], cy = c[ray.ky] - ray.sy * c[ray.kz];
+  // A vertex relative to the origin, its coordinates in the ray's order kx, ky, kz, sheared
+  // (each coordinate read from the wall by its index, with nothing stored between).
+  const auto sheared = [&](const Vec3& p, double& x, double& y, double& z) {
+    z = p[ray.kz] - ray.origin[ray.kz];
+    x = (p[ray.kx] - ray.origin[ray.kx]) - ray.sx * z;
+    y = (p[ray.ky] - ray.origin[ray.ky]) - ray.sy * z;
+  };
+  double ax, ay, az, bx, by, bz, cx, cy, cz;
+  sheared(w.p[0], ax, ay, az);
+  sheared(w.p[1], bx, by, bz);
+  sheared(w.p[2], cx, cy, cz);
   const double u = cx * by - cy * bx, v = ax * cy - ay * cx, e = bx * ay - by * ax;
   const double det = u + v + e;
   // Barycentric coordinates u/det, v/det, e/det ≥ −span_slack: the exact watertight test,
   // widened by the slack so that a crossing within rounding of an edge is also caught by the
   // triangle on whose side the particle starts (the neighbour may be tested at dt = 0).
   if (!(det < 0) || std::max({u, v, e}) > -w.span_slack * det) return never;
-  const double T = ray.sz * (u * a[ray.kz] + v * b[ray.kz] + e * c[ray.kz]);
+  const double T = ray.sz * (u * az + v * bz + e * cz);
   // beyond < 0 puts the crossing ahead; a negative T/det is rounding.
   const double t = s.t + std::max(0.0, T / det);
   return t <= t_end ? t : never;
