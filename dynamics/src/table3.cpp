@@ -115,9 +115,7 @@ template <class Exit>
 void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best,
                               Exit exit) const {
   Bvh::Pending stack[Bvh::stack_size];
-  auto walk = triangle_walk(origin, dir, pad, t0, best, exit, stack);
-  while (walk.step()) {
-  }
+  triangle_walk(origin, dir, pad, t0, best, exit, stack).run();
 }
 
 /// The triangles a helix (Gyration) may cross, an arc at a time in time order: an arc of

@@ -154,6 +154,11 @@ class Bvh::Walk {
     child_ = stack_[top_].child;
     return true;
   }
+  /// Steps to the end.
+  void run() {
+    while (step()) {
+    }
+  }
 
  private:
   static constexpr int ended = std::numeric_limits<int>::min();  // (no leaf's code)
@@ -192,9 +197,7 @@ class Bvh::Walk {
 template <class Leaf, class Fetch>
 void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const {
   Pending stack[stack_size];
-  Walk<Leaf, Fetch> w(*this, origin, dir, pad, tau_max, leaf, fetch, stack);
-  while (w.step()) {
-  }
+  Walk<Leaf, Fetch>(*this, origin, dir, pad, tau_max, leaf, fetch, stack).run();
 }
 
 template <class W>

@@ -133,10 +133,7 @@ void tube_collision(const BasicTable<Real>& table, const Scan& scan, const Vec2&
   // of the line's points.)
   const double d = reach + 4 * table.tolerance();
   const int r = int(std::ceil(d / std::min(g.cell.x(), g.cell.y())));
-  int first[BasicTable<Real>::kind_count];
-  int walls = 0;
-  table.for_each_kind([&](const auto& kind, int k) { first[k] = walls, walls += int(kind.size()); });
-  std::vector<bool> tried(static_cast<std::size_t>(walls));
+  std::vector<bool> tried(table.wall_count());  // by piece_of
   // The cells of the box of the line's stretch [enter, leave], widened by d, along one axis.
   auto cells = [&](int axis, double enter, double leave, int& lo, int& hi) {
     const double a = p[axis] + (v[axis] == 0 ? 0 : v[axis] * (enter - t0));
@@ -154,9 +151,9 @@ void tube_collision(const BasicTable<Real>& table, const Scan& scan, const Vec2&
         const std::size_t c = std::size_t(y) * g.nx + x;
         for (int k = g.start[c]; k < g.start[c + 1]; ++k) {
           const WallId& wall = g.walls[k];
-          const auto flat = std::size_t(first[wall.kind] + wall.index);
-          if (tried[flat]) continue;
-          tried[flat] = true;
+          const auto piece = std::size_t(table.piece_of(wall));
+          if (tried[piece]) continue;
+          tried[piece] = true;
           try_wall(table, scan, wall, best);
         }
       }
