@@ -48,19 +48,34 @@ Table3::BasicTable(const Region3& region, std::int64_t simd_target) : region_(re
 
 namespace {
 
-/// The earliest exit time `exit(wall, best.t)` of walls [first, first + count) of a kind, kept
-/// in `best` where it is earlier.
+/// The earliest exit time `exit(wall, best.t)` of the walls of a kind other than the triangles
+/// (ask_triangles), kept in `best` where it is earlier.
 template <class W, class Exit>
-void ask_walls(const std::vector<W>& walls, int kind, int first, int count, Hit3& best, Exit exit) {
-  for (int i = first; i < first + count; ++i) {
+void ask_walls(const std::vector<W>& walls, int kind, Hit3& best, Exit exit) {
+  for (int i = 0; i < int(walls.size()); ++i) {
     const double t = exit(walls[i], best.t);
     if (t < best.t) best.t = t, best.wall = {kind, i};
   }
 }
-template <class W, class Exit>
-void ask_walls(const std::vector<W>& walls, int kind, Hit3& best, Exit exit) {
-  ask_walls(walls, kind, 0, int(walls.size()), best, exit);
+
+/// The earliest exit time `exit(triangle, best.t)` of the triangles [first, first + count) of a
+/// BVH leaf, kept in `best` where it is earlier; of two at the same time, the one first in the
+/// mesh's order (`order`, the BVH's leaf order to the mesh's), so that the hit depends neither
+/// on the order in which a walk asks the leaves nor on the tree.
+template <class Exit>
+void ask_triangles(const std::vector<TriangleWall>& triangles, const std::vector<int>& order, int first, int count,
+                   Hit3& best, Exit exit) {
+  for (int i = first; i < first + count; ++i) {
+    const double t = exit(triangles[i], best.t);
+    if (t < best.t || (t == best.t && best.wall.kind == wall_kind3::triangle && order[i] < order[best.wall.index]))
+      best.t = t, best.wall = {wall_kind3::triangle, i};
+  }
 }
+
+/// The bound of a walk's τ (from t0) that a leaf holding a triangle crossed at best.t, or
+/// before, is never culled by: a crossing at τ is at fl(t0 + τ) ≤ best.t only if
+/// t0 + τ < the next double after best.t.
+double tau_bound(double best_t, double t0) { return std::nextafter(best_t, never) - t0; }
 
 /// Asks the walls of every kind but the triangles one by one: those before the triangles in
 /// WallKinds3 (the planes) or those after them (the spheres), as `collision` asks them
@@ -103,10 +118,10 @@ auto Table3::triangle_walk(const Vec3& origin, const Vec3& dir, double pad, doub
                            Bvh::Pending* stack) const {
   const auto& walls = triangles();
   return Bvh::Walk(
-      bvh_, origin, dir, pad, best.t - t0,
-      [&walls, &best, t0, exit](int first, int count) {
-        ask_walls(walls, wall_kind3::triangle, first, count, best, exit);
-        return best.t - t0;
+      bvh_, origin, dir, pad, tau_bound(best.t, t0),
+      [&walls, &order = bvh_.order(), &best, t0, exit](int first, int count) {
+        ask_triangles(walls, order, first, count, best, exit);
+        return tau_bound(best.t, t0);
       },
       [&walls](int first, int count) { fetch_leaf(walls, first, count); }, stack);
 }
@@ -152,12 +167,13 @@ void Table3::search_triangles_along_helix(const Helix& helix, double t0, Hit3& b
     const Vec3 b = helix.at((j + 1) * h).first;
     const double pad = bow + rounding + 16 * scan::eps<double> * (a.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff());
     bvh_.walk(
-        a, (b - a) / h, pad, std::min(h, best.t - ta),
+        a, (b - a) / h, pad, std::min(h, tau_bound(best.t, ta)),
         [&](int first, int count) {
-          if (std::find(seen, seen + seen_count, first) != seen + seen_count) return std::min(h, best.t - ta);
-          if (seen_count < max_seen) seen[seen_count++] = first;
-          ask_walls(triangles(), wall_kind3::triangle, first, count, best, exit_before_arcs_end);
-          return std::min(h, best.t - ta);
+          if (std::find(seen, seen + seen_count, first) == seen + seen_count) {
+            if (seen_count < max_seen) seen[seen_count++] = first;
+            ask_triangles(triangles(), bvh_.order(), first, count, best, exit_before_arcs_end);
+          }
+          return std::min(h, tau_bound(best.t, ta));
         },
         [&](int first, int count) { fetch_leaf(triangles(), first, count); });
     a = b;
@@ -213,7 +229,10 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
     ask_walls_beside_triangles(*this, false, best, exit);
   } else if constexpr (!std::is_same_v<Flight, PeriodicDriveFlight3>) {
     const auto exit = [&](const auto& w, double t) { return flight.exit_time(s, w, t); };
-    for_each_kind([&](const auto& walls, int kind) { ask_walls(walls, kind, best, exit); });
+    for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+      if constexpr (std::is_same_v<W, TriangleWall>) ask_triangles(walls, bvh_.order(), 0, int(walls.size()), best, exit);
+      else ask_walls(walls, kind, best, exit);
+    });
   } else {
     const DriveQuiver3 q(flight, s);
     const WindowedWalls3 windowed(*this);
