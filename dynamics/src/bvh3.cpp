@@ -3,7 +3,10 @@
 // volume hierarchies", 2007; Embree's and pbrt's BVHs).
 #include "billiards/dynamics/bvh3.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 
@@ -43,6 +46,28 @@ float float_above(double x) {
 }
 
 }  // namespace
+
+namespace detail {
+
+BvhRay::BvhRay(const Vec3& origin, const Vec3& dir, double pad, double extent) {
+  // The power of two of the largest component: its exponent's bits (by ldexp below the normals).
+  const double largest = dir.cwiseAbs().maxCoeff();
+  time_scale = largest >= std::numeric_limits<double>::min()
+                   ? std::bit_cast<double>(std::bit_cast<std::uint64_t>(largest) & 0x7ff0000000000000)
+                   : largest > 0 ? std::ldexp(1.0, std::ilogb(largest)) : 1;
+  for (int k = 0; k < 3; ++k) {
+    // 1/d' for d' = dir[k] / time_scale (exact), rounded once.
+    const double inverse = dir[k] != 0 ? time_scale / dir[k] : std::numeric_limits<double>::infinity();
+    inv[k] = float(inverse);  // (±∞ beyond the floats)
+    near[k] = inverse < 0;
+    const double x = origin[k], moved = pad + 0x1p-20 * (extent + std::abs(x) + pad);
+    const float up = float(x + moved), down = float(x - moved);
+    enter[k] = near[k] ? down : up;
+    leave[k] = near[k] ? up : down;
+  }
+}
+
+}  // namespace detail
 
 struct Bvh::Split {
   Box box;
@@ -147,6 +172,9 @@ int Bvh::gather(const std::vector<Split>& tree, int split, double pad) {
     for (int k = 0; k < 3; ++k) {
       nodes_[index].bound[0][k][i] = float_below(box.lo[k] - pad);
       nodes_[index].bound[1][k][i] = float_above(box.hi[k] + pad);
+      if (i < n)
+        extent_ = std::max({extent_, std::abs(double(nodes_[index].bound[0][k][i])),
+                            std::abs(double(nodes_[index].bound[1][k][i]))});
     }
   }
   for (int i = 0; i < n; ++i) {

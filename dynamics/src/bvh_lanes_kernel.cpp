@@ -1,7 +1,7 @@
 // The triangle BVH's slab test (bvh_lanes.hpp), compiled once for each SIMD target of Google
 // Highway (hwy/foreach_target.h includes this file again for each, in its own namespace, as
 // lockstep_kernel.cpp is): slab_test-inl.hpp's test, the source of the test without a target
-// too, on as many children as a vector of doubles holds: the same entry times and the same
+// too, on as many children as a vector of floats holds: the same entry times and the same
 // children entered, bit for bit, so that a walk visits the same leaves in the same order on
 // every target.
 
@@ -20,16 +20,16 @@ namespace billiards::dynamics::bvh_lanes::HWY_NAMESPACE {
 
 namespace hn = hwy::HWY_NAMESPACE;
 
-/// Highway's vector of (at most the eight children's) doubles: slab_test-inl.hpp's traits.
+/// Highway's vector of (at most the eight children's) floats: slab_test-inl.hpp's traits.
 struct VectorLanes {
-  using D = hn::CappedTag<double, width>;
+  using D = hn::CappedTag<float, width>;
   using Num = hn::Vec<D>;
   static constexpr int lanes = int(hn::MaxLanes(D()));
-  static Num splat(double x) { return hn::Set(D(), x); }
-  static Num widened(const float* p) { return hn::PromoteTo(D(), hn::LoadU(hn::Rebind<float, D>(), p)); }
+  static Num splat(float x) { return hn::Set(D(), x); }
+  static Num load(const float* p) { return hn::LoadU(D(), p); }
   static Num later(Num a, Num b) { return hn::IfThenElse(hn::Lt(a, b), b, a); }
   static Num earlier(Num a, Num b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }
-  static void store(Num v, double* p) { hn::StoreU(v, D(), p); }
+  static void store(Num v, float* p) { hn::StoreU(v, D(), p); }
   static unsigned entered(Num in, Num out) {
     std::uint8_t bits[8] = {};
     hn::StoreMaskBits(D(), hn::Le(in, out), bits);
@@ -39,7 +39,7 @@ struct VectorLanes {
 
 #include "billiards/dynamics/slab_test-inl.hpp"
 
-unsigned enter(const float* bound, const Ray& ray, double tau_max, double* t_in) {
+unsigned enter(const float* bound, const Ray& ray, float tau_max, float* t_in) {
   return slab_test<VectorLanes>(bound, ray, tau_max, t_in);
 }
 

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <limits>
 
 namespace billiards::dynamics {
 
@@ -73,9 +75,11 @@ void ask_triangles(const std::vector<TriangleWall>& triangles, const std::vector
 }
 
 /// The bound of a walk's τ (from t0) that a leaf holding a triangle crossed at best.t, or
-/// before, is never culled by: a crossing at τ is at fl(t0 + τ) ≤ best.t only if
-/// t0 + τ < the next double after best.t.
-double tau_bound(double best_t, double t0) { return std::nextafter(best_t, never) - t0; }
+/// before, is never culled by: a crossing at τ is at fl(t0 + τ) ≤ best.t only if t0 + τ is
+/// below the next double after best.t, which best.t + |best.t| 2⁻⁵² (rounded) is not below.
+double tau_bound(double best_t, double t0) {
+  return best_t + (std::abs(best_t) * 0x1p-52 + std::numeric_limits<double>::denorm_min()) - t0;
+}
 
 /// Asks the walls of every kind but the triangles one by one: those before the triangles in
 /// WallKinds3 (the planes) or those after them (the spheres), as `collision` asks them

@@ -10,10 +10,6 @@
 #include <limits>
 #include <vector>
 
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
-
 namespace billiards::dynamics {
 
 using geometry3::Vec3;
@@ -52,7 +48,7 @@ class Bvh {
   /// A child entered and not yet searched, on a walk's stack.
   struct Pending {
     int child;
-    double t_in;  // where the ray enters its box
+    float t_in;  // where the ray enters its box (BvhRay's τ')
   };
   /// The most children a walk's stack holds: the binary build's depth bound (from depth 32 on
   /// it splits at the median: at most 31 more levels), each node popped pushing at most `width`.
@@ -77,56 +73,55 @@ class Bvh {
   }
 
   std::vector<Node> nodes_;
+  double extent_ = 0;  // the largest |coordinate| of a non-empty box
   std::vector<int> order_;
   bvh_lanes::Kernel slab_test_ = nullptr;
 };
 
 namespace detail {
 
-/// Two doubles in one SSE2 register (GCC's and Clang's vector extension): the slab test's
+/// Four floats in one SSE2 register (GCC's and Clang's vector extension): the slab test's
 /// lanes without a SIMD target (the project's flags leave the vectorizing to the code: no SLP
 /// vectorizer, no wider registers by default).
-struct PairLanes {
-  using Num = double __attribute__((vector_size(2 * sizeof(double))));
-  static constexpr int lanes = 2;
-  static Num splat(double x) { return Num{x, x}; }
-  /// (One instruction where SSE2 has it: compilers convert a vector of two floats one at a time.)
-  static Num widened(const float* p) {
-#ifdef __SSE2__
-    double both;
-    __builtin_memcpy(&both, p, sizeof both);
-    return Num(_mm_cvtps_pd(_mm_castpd_ps(_mm_set_sd(both))));
-#else
-    return Num{p[0], p[1]};
-#endif
+struct QuadLanes {
+  using Num = float __attribute__((vector_size(4 * sizeof(float))));
+  static constexpr int lanes = 4;
+  static Num splat(float x) { return Num{x, x, x, x}; }
+  static Num load(const float* p) {
+    Num v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
   }
   static Num later(Num a, Num b) { return a < b ? b : a; }
   static Num earlier(Num a, Num b) { return b < a ? b : a; }
-  static void store(Num v, double* p) { __builtin_memcpy(p, &v, sizeof v); }
+  static void store(Num v, float* p) { __builtin_memcpy(p, &v, sizeof v); }
   static unsigned entered(Num in, Num out) {
 #ifdef __SSE2__
-    return unsigned(__builtin_ia32_movmskpd(Num(in <= out)));  // (the sign bits)
+    return unsigned(__builtin_ia32_movmskps(Num(in <= out)));  // (the sign bits)
 #else
     const auto m = in <= out;
-    return unsigned(m[0] & 1) | unsigned(m[1] & 1) << 1;
+    return unsigned(m[0] & 1) | unsigned(m[1] & 1) << 1 | unsigned(m[2] & 1) << 2 | unsigned(m[3] & 1) << 3;
 #endif
   }
 };
 
 #include "billiards/dynamics/slab_test-inl.hpp"
 
-/// A ray as the slab test reads it; a zero component of its direction is replaced by a tiny
-/// one of the same role: the slab then spans everything (origin between the planes) or
-/// nothing, with no 0·∞.
+/// A ray origin + τ dir as the slab test reads it, in floats, with boxes grown by `pad`, in the
+/// time τ' = τ · time_scale of its direction scaled by a power of two to a largest component
+/// in [1, 2): a box of the table is then entered and left at times the floats hold, whatever
+/// the speed.  Each coordinate of the origin is moved by the pad and a margin of
+/// 2⁻²⁰ (extent + |x| + pad), where `extent` bounds the boxes' coordinates, towards the side of
+/// the slab it stands for (Ray::enter, Ray::leave): each rounding of the test in floats (the
+/// origin's, the inverse's, the subtraction's, the product's) is within 2⁻²⁴ of that sum in
+/// space, so together they keep within the margin, on the side of entering, and no box the ray
+/// meets in doubles is culled.  A zero component of the direction has the inverse +∞: the slab
+/// spans everything (origin between the planes) or nothing.
 struct BvhRay : bvh_lanes::Ray {
-  BvhRay(const Vec3& origin, const Vec3& dir, double pad) {
-    for (int k = 0; k < 3; ++k) {
-      x[k] = origin[k];
-      inv[k] = 1 / (dir[k] != 0 ? dir[k] : 1e-300);
-      near[k] = inv[k] < 0;
-      grow[k] = near[k] ? -pad : pad;
-    }
-  }
+  double time_scale;
+  BvhRay(const Vec3& origin, const Vec3& dir, double pad, double extent);
+  /// τ' of a bound τ, as a float not below it (2⁻²³ above before rounding to nearest).
+  float time_bound(double tau) const { return float(tau * time_scale * (1 + 0x1p-23)); }
 };
 
 }  // namespace detail
@@ -136,14 +131,15 @@ class Bvh::Walk {
  public:
   Walk(const Bvh& bvh, const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
        Pending* stack)
-      : bvh_(&bvh), ray_(origin, dir, pad), tau_max_(tau_max), child_(bvh.nodes_.empty() ? ended : 0), leaf_(leaf),
+      : bvh_(&bvh), ray_(origin, dir, pad, bvh.extent_), tau_max_(ray_.time_bound(tau_max)),
+        child_(bvh.nodes_.empty() ? ended : 0), leaf_(leaf),
         fetch_(fetch), stack_(stack) {}
   /// Searches the node or leaf next (false: the walk has ended, nothing is left).
   bool step() {
     if (child_ == ended) return false;
     if (child_ < 0) {
       const int code = ~child_;
-      tau_max_ = leaf_(code / max_leaf, code % max_leaf + 1);
+      tau_max_ = ray_.time_bound(leaf_(code / max_leaf, code % max_leaf + 1));
     } else if (enter_children()) {
       return true;
     }
@@ -167,11 +163,11 @@ class Bvh::Walk {
   /// fetched meanwhile.  False where it enters none.
   bool enter_children() {
     const Node& node = bvh_->nodes_[child_];
-    double t_in[width];
+    float t_in[width];
     const int bottom = top_;
     const float* bound = &node.bound[0][0][0];
     const unsigned entered = bvh_->slab_test_ ? bvh_->slab_test_(bound, ray_, tau_max_, t_in)
-                                              : detail::slab_test<detail::PairLanes>(bound, ray_, tau_max_, t_in);
+                                              : detail::slab_test<detail::QuadLanes>(bound, ray_, tau_max_, t_in);
     for (unsigned mask = entered; mask; mask &= mask - 1) {
       const int i = std::countr_zero(mask);
       if (const int c = node.child[i]; c >= 0) prefetch(bvh_->nodes_[c]);
@@ -187,7 +183,7 @@ class Bvh::Walk {
 
   const Bvh* bvh_;
   detail::BvhRay ray_;
-  double tau_max_;
+  float tau_max_;  // τ'
   int top_ = 0, child_;  // the node or leaf searched next
   Leaf leaf_;
   Fetch fetch_;

@@ -46,7 +46,7 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
 
   /// Keeps a reference to `region` (for point location), which must outlive the table: a
   /// temporary region does not compile.  The BVH's slab test runs in the lanes of
-  /// `simd_target` (bvh_lanes.hpp; simd::scalar: two children at a time, without a target),
+  /// `simd_target` (bvh_lanes.hpp; simd::scalar: four children at a time, without a target),
   /// the same children entered on any.
   explicit BasicTable(const geometry3::Region3& region, std::int64_t simd_target = simd::chosen_target());
   BasicTable(geometry3::Region3&&, std::int64_t = simd::scalar) = delete;
