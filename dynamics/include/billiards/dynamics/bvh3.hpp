@@ -1,6 +1,6 @@
 // The bounding-volume hierarchy over the triangles of a mesh that a 3-D table walks
 // (table3.cpp): built by the surface-area heuristic, eight children a node, their boxes
-// stored as floats rounded outward, walked nearest box first.
+// stored as floats rounded outward, walked into the nearest child entered first.
 #pragma once
 
 #include "billiards/dynamics/bvh_lanes.hpp"
@@ -8,6 +8,7 @@
 
 #include <bit>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace billiards::dynamics {
@@ -40,8 +41,8 @@ class Bvh {
   const std::vector<int>& order() const { return order_; }
 
   /// Walks the leaves whose boxes, grown by `pad`, the ray origin + τ dir enters for τ in
-  /// [0, tau_max], nearest box first: `tau_max = leaf(first, count)` for each, so that a leaf
-  /// may shrink the bound of the rest.  `fetch(first, count)` is told of a leaf as soon as its
+  /// [0, tau_max], into the nearest child of a node first: `tau_max = leaf(first, count)` for
+  /// each, so that a leaf may shrink the bound of the rest.  `fetch(first, count)` is told of a leaf as soon as its
   /// box is entered, so that its triangles may be fetched from memory meanwhile.
   template <class Leaf, class Fetch>
   void walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const;
@@ -143,7 +144,7 @@ class Bvh::Walk {
     } else if (enter_children()) {
       return true;
     }
-    // Next, the nearest entry left that is not beyond a hit found since it was pushed.
+    // Next, the last entry pushed that is not beyond a hit found since.
     do {
       if (top_ == 0) return (child_ = ended), false;
     } while (stack_[--top_].t_in > tau_max_);
@@ -158,9 +159,10 @@ class Bvh::Walk {
 
  private:
   static constexpr int ended = std::numeric_limits<int>::min();  // (no leaf's code)
-  /// Pushes the children of node child_ that the ray enters, farthest first (insertion by
-  /// t_in), and makes the nearest the next, so that the bound shrinks early; the others are
-  /// fetched meanwhile.  False where it enters none.
+  /// Pushes the children of node child_ that the ray enters and makes the nearest the next, so
+  /// that the bound shrinks early; the others are fetched meanwhile, and stay in the node's
+  /// order (sorting them costs more than it saves: the hit does not depend on the order, and
+  /// the ray most often enters one or two).  False where it enters none.
   bool enter_children() {
     const Node& node = bvh_->nodes_[child_];
     float t_in[width];
@@ -172,9 +174,11 @@ class Bvh::Walk {
       const int i = std::countr_zero(mask);
       if (const int c = node.child[i]; c >= 0) prefetch(bvh_->nodes_[c]);
       else fetch_(~c / max_leaf, ~c % max_leaf + 1);
-      int j = top_++;
-      for (; j > bottom && stack_[j - 1].t_in < t_in[i]; --j) stack_[j] = stack_[j - 1];
-      stack_[j] = {node.child[i], t_in[i]};
+      // The nearest so far stays on top.
+      stack_[top_] = {node.child[i], t_in[i]};
+      const bool farther = top_ > bottom && stack_[top_ - 1].t_in < t_in[i];
+      std::swap(stack_[top_], stack_[top_ - farther]);
+      ++top_;
     }
     if (top_ == bottom) return false;
     child_ = stack_[--top_].child;  // (entered, so t_in ≤ tau_max)
