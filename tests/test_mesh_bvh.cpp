@@ -1,9 +1,10 @@
 // The triangle BVH never culls a triangle a flight can hit: its first hit is that of every
 // triangle tried in turn in the mesh's order, bit for bit (of triangles crossed at the same
-// time, the first in the mesh, whatever the tree and the walk's order), for straight rays (from inside the mesh, from the walls
-// after a bounce, and aimed exactly at vertices and edges, where the float boxes are tightest),
-// for helices (boxes grown by the cyclotron radius) and for driven flights (grown by the
-// oscillation's amplitude); and the walls keep the mesh's own numbering.  The slab test, in
+// time, the first in the mesh, whatever the tree and the walk's order), for straight rays
+// (from inside the mesh, from the walls after a bounce, and aimed exactly at vertices and
+// edges, where the float boxes are tightest), for helices (boxes grown by the cyclotron radius)
+// and for driven flights (grown by the oscillation's amplitude); and the walls keep the mesh's
+// own numbering.  The slab test, in
 // floats, enters every child a ray meets in doubles, no later, and gives the times that a
 // child-by-child test does, bit for bit, without a SIMD target and on every target.
 #include "billiards/dynamics/magnetic_flight.hpp"
@@ -33,7 +34,8 @@ Hit3 every_triangle(const Table3& table, const Flight& flight, const typename Fl
                     int& ties) {
   const auto& triangles = table.triangles();
   std::vector<int> in_mesh_order(triangles.size());
-  for (int i = 0; i < int(triangles.size()); ++i) in_mesh_order[std::size_t(table.piece_of({wall_kind3::triangle, i}))] = i;
+  for (int i = 0; i < int(triangles.size()); ++i)
+    in_mesh_order[std::size_t(table.piece_of({wall_kind3::triangle, i}))] = i;
   Hit3 best;
   best.t = t_end;
   for (const int i : in_mesh_order) {
@@ -214,7 +216,8 @@ TEST_CASE("the slab test in floats enters every child a ray meets, no later, the
     for (int side = 0; side < 2; ++side)
       for (int k = 0; k < 3; ++k)
         for (int i = 0; i < Bvh::width; ++i)
-          if (std::isfinite(node.bound[side][k][i])) extent = std::max(extent, double(std::abs(node.bound[side][k][i])));
+          if (std::isfinite(node.bound[side][k][i]))
+            extent = std::max(extent, double(std::abs(node.bound[side][k][i])));
     const Vec3 origin(2 * rng.uniform() - 0.5, 2 * rng.uniform() - 0.5, 2 * rng.uniform() - 0.5);
     // Every other ray is aimed at a corner of a child's box or a point of one of its edges,
     // where the box is met at a single point; a few are slow, to a speed of 1e-35.

@@ -234,7 +234,8 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
   } else if constexpr (!std::is_same_v<Flight, PeriodicDriveFlight3>) {
     const auto exit = [&](const auto& w, double t) { return flight.exit_time(s, w, t); };
     for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
-      if constexpr (std::is_same_v<W, TriangleWall>) ask_triangles(walls, bvh_.order(), 0, int(walls.size()), best, exit);
+      if constexpr (std::is_same_v<W, TriangleWall>)
+        ask_triangles(walls, bvh_.order(), 0, int(walls.size()), best, exit);
       else ask_walls(walls, kind, best, exit);
     });
   } else {

@@ -42,8 +42,9 @@ class Bvh {
 
   /// Walks the leaves whose boxes, grown by `pad`, the ray origin + τ dir enters for τ in
   /// [0, tau_max], into the nearest child of a node first: `tau_max = leaf(first, count)` for
-  /// each, so that a leaf may shrink the bound of the rest.  `fetch(first, count)` is told of a leaf as soon as its
-  /// box is entered, so that its triangles may be fetched from memory meanwhile.
+  /// each, so that a leaf may shrink the bound of the rest.  `fetch(first, count)` is told of a
+  /// leaf as soon as its box is entered, so that its triangles may be fetched from memory
+  /// meanwhile.
   template <class Leaf, class Fetch>
   void walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const;
   /// A child entered and not yet searched, on a walk's stack.
@@ -133,8 +134,7 @@ class Bvh::Walk {
   Walk(const Bvh& bvh, const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
        Pending* stack)
       : bvh_(&bvh), ray_(origin, dir, pad, bvh.extent_), tau_max_(ray_.time_bound(tau_max)),
-        child_(bvh.nodes_.empty() ? ended : 0), leaf_(leaf),
-        fetch_(fetch), stack_(stack) {}
+        child_(bvh.nodes_.empty() ? ended : 0), leaf_(leaf), fetch_(fetch), stack_(stack) {}
   /// Searches the node or leaf next (false: the walk has ended, nothing is left).
   bool step() {
     if (child_ == ended) return false;
