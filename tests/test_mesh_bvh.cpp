@@ -79,7 +79,8 @@ geometry3::Region3 moved(const geometry3::Region3& region, const Vec3& offset) {
 }  // namespace
 
 TEST_CASE("the BVH finds the first hit of every triangle tried in turn: rays, rays through vertices and edges") {
-  // The bumpy mesh also far from the origin, where a float's step is a tenth of its triangles.
+  // The bumpy mesh also far from the origin, where a float's step is a tenth of its triangles
+  // (the BVH's boxes are in the frame of their root's center).
   for (const auto& [name, offset] : {std::pair{"l-prism", Vec3::Zero().eval()}, std::pair{"bumpy-100k", Vec3::Zero().eval()},
                                      std::pair{"bumpy-100k", Vec3(3e3, -1e4, 7e3)}}) {
     INFO(name << " moved by " << offset.transpose());

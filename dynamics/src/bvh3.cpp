@@ -83,6 +83,7 @@ Bvh::Bvh(const std::vector<Box>& boxes, double pad, bvh_lanes::Kernel slab_test)
   tree.reserve(2 * boxes.size());
   build(tree, boxes, 0, int(boxes.size()), 0);
   nodes_.reserve(tree.size() / 2);
+  center_ = centroid(tree[0].box);
   gather(tree, 0, pad);
 }
 
@@ -170,8 +171,8 @@ int Bvh::gather(const std::vector<Split>& tree, int split, double pad) {
   for (int i = 0; i < width; ++i) {
     const Box box = i < n ? tree[children[i]].box : empty_box();
     for (int k = 0; k < 3; ++k) {
-      nodes_[index].bound[0][k][i] = float_below(box.lo[k] - pad);
-      nodes_[index].bound[1][k][i] = float_above(box.hi[k] + pad);
+      nodes_[index].bound[0][k][i] = float_below(box.lo[k] - pad - center_[k]);
+      nodes_[index].bound[1][k][i] = float_above(box.hi[k] + pad - center_[k]);
       if (i < n)
         extent_ = std::max({extent_, std::abs(double(nodes_[index].bound[0][k][i])),
                             std::abs(double(nodes_[index].bound[1][k][i]))});

@@ -16,8 +16,11 @@ namespace billiards::dynamics {
 using geometry3::Vec3;
 
 /// The boxes are grown by a pad (the walls' slack, so that a ray within rounding of a triangle
-/// is never culled by its box) and then rounded outward to floats: a stored box always holds
-/// the padded box in doubles.  A walk grows them again by its own pad (a tube's radius).
+/// is never culled by its box), moved to the frame of the root box's center and then rounded
+/// outward to floats: a stored box always holds the padded box in doubles (the shift's
+/// roundings, within an ulp of the coordinates, are far inside a pad of some ulps of them).
+/// The frame keeps the floats' coordinates as small as the mesh, wherever it lies.  A walk
+/// grows the boxes again by its own pad (a tube's radius).
 class Bvh {
  public:
   static constexpr int width = bvh_lanes::width;  // children of a node
@@ -75,7 +78,8 @@ class Bvh {
   }
 
   std::vector<Node> nodes_;
-  double extent_ = 0;  // the largest |coordinate| of a non-empty box
+  Vec3 center_ = Vec3::Zero();  // the frame of the stored boxes
+  double extent_ = 0;  // the largest |coordinate| of a stored non-empty box
   std::vector<int> order_;
   bvh_lanes::Kernel slab_test_ = nullptr;
 };
@@ -116,9 +120,10 @@ struct QuadLanes {
 /// 2⁻²⁰ (extent + |x| + pad), where `extent` bounds the boxes' coordinates, towards the side of
 /// the slab it stands for (Ray::enter, Ray::leave): each rounding of the test in floats (the
 /// origin's, the inverse's, the subtraction's, the product's) is within 2⁻²⁴ of that sum in
-/// space, so together they keep within the margin, on the side of entering, and no box the ray
-/// meets in doubles is culled.  A zero component of the direction has the inverse +∞: the slab
-/// spans everything (origin between the planes) or nothing.
+/// space, and the origin's move to the boxes' frame (Bvh) within 2⁻⁵³ of |x|, so together they
+/// keep within the margin, on the side of entering, and no box the ray meets in doubles is
+/// culled.  A zero component of the direction has the inverse +∞: the slab spans everything
+/// (origin between the planes) or nothing.
 struct BvhRay : bvh_lanes::Ray {
   double time_scale;
   BvhRay(const Vec3& origin, const Vec3& dir, double pad, double extent);
@@ -133,7 +138,7 @@ class Bvh::Walk {
  public:
   Walk(const Bvh& bvh, const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
        Pending* stack)
-      : bvh_(&bvh), ray_(origin, dir, pad, bvh.extent_), tau_max_(ray_.time_bound(tau_max)),
+      : bvh_(&bvh), ray_(origin - bvh.center_, dir, pad, bvh.extent_), tau_max_(ray_.time_bound(tau_max)),
         child_(bvh.nodes_.empty() ? ended : 0), leaf_(leaf), fetch_(fetch), stack_(stack) {}
   /// Searches the node or leaf next (false: the walk has ended, nothing is left).
   bool step() {
