@@ -27,6 +27,9 @@ struct VectorLanes {
   static constexpr int lanes = int(hn::MaxLanes(D()));
   static Num splat(float x) { return hn::Set(D(), x); }
   static Num load(const float* p) { return hn::LoadU(D(), p); }
+  static Num convert(const std::int8_t* p) {
+    return hn::ConvertTo(D(), hn::PromoteTo(hn::Rebind<std::int32_t, D>(), hn::LoadU(hn::Rebind<std::int8_t, D>(), p)));
+  }
   static Num later(Num a, Num b) { return hn::IfThenElse(hn::Lt(a, b), b, a); }
   static Num earlier(Num a, Num b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }
   static void store(Num v, float* p) { hn::StoreU(v, D(), p); }
@@ -39,8 +42,8 @@ struct VectorLanes {
 
 #include "billiards/dynamics/slab_test-inl.hpp"
 
-unsigned enter(const float* bound, const Ray& ray, float tau_max, float* t_in) {
-  return slab_test<VectorLanes>(bound, ray, tau_max, t_in);
+unsigned enter(const float* bound, const std::int8_t* cone, const Ray& ray, float tau_max, float* t_in) {
+  return slab_test<VectorLanes>(bound, cone, ray, tau_max, t_in);
 }
 
 }  // namespace billiards::dynamics::bvh_lanes::HWY_NAMESPACE

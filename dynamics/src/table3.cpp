@@ -37,10 +37,16 @@ Table3::BasicTable(const Region3& region, std::int64_t simd_target) : region_(re
   if (const auto* b = std::get_if<Ball>(&region.outer)) sphere(*b, true);
   for (const Ball& b : region.holes) sphere(b, false);
   std::vector<Bvh::Box> boxes;
+  std::vector<Bvh::Facing> facings;
   boxes.reserve(triangles.size());
-  for (const TriangleWall& w : triangles)
+  facings.reserve(triangles.size());
+  // From a start within straight_reach of the table's box, every vertex is within reach.
+  const double reach = (1 + 2 * straight_reach) * (hi_ - lo_).maxCoeff() + slack;
+  for (const TriangleWall& w : triangles) {
     boxes.push_back({w.p[0].cwiseMin(w.p[1]).cwiseMin(w.p[2]), w.p[0].cwiseMax(w.p[1]).cwiseMax(w.p[2])});
-  bvh_ = Bvh(boxes, 4 * slack, bvh_lanes::kernel_of(simd_target));
+    facings.push_back({w.normal, w.facing_away_margin(reach)});
+  }
+  bvh_ = Bvh(boxes, facings, 4 * slack, bvh_lanes::kernel_of(simd_target));
   // Store the triangles in the BVH's leaf order: a leaf's triangles are then contiguous.
   std::vector<TriangleWall> sorted;
   sorted.reserve(triangles.size());
@@ -115,11 +121,17 @@ double time_to_leave(const Tube3& tube, const Vec3& lo, const Vec3& hi) {
 
 }  // namespace
 
+Bvh::Heading Table3::straight_from(const Vec3& x) const {
+  const Vec3 margin = straight_reach * (hi_ - lo_);
+  const bool near = (x.array() >= (lo_ - margin).array()).all() && (x.array() <= (hi_ + margin).array()).all();
+  return near ? Bvh::Heading::straight : Bvh::Heading::any;
+}
+
 /// The walk of the BVH along the ray `origin + τ dir` (τ after `t0`), boxes grown by `pad`,
 /// that keeps in `best` the earliest exit time `exit(triangle)` found, on `stack`.
 template <class Exit>
 auto Table3::triangle_walk(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
-                           Bvh::Pending* stack) const {
+                           Bvh::Pending* stack, Bvh::Heading heading) const {
   const auto& walls = triangles();
   return Bvh::Walk(
       bvh_, origin, dir, pad, tau_bound(best.t, t0),
@@ -127,14 +139,14 @@ auto Table3::triangle_walk(const Vec3& origin, const Vec3& dir, double pad, doub
         ask_triangles(walls, order, first, count, best, exit);
         return tau_bound(best.t, t0);
       },
-      [&walls](int first, int count) { fetch_leaf(walls, first, count); }, stack);
+      [&walls](int first, int count) { fetch_leaf(walls, first, count); }, stack, heading);
 }
 
 template <class Exit>
-void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best,
-                              Exit exit) const {
+void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
+                              Bvh::Heading heading) const {
   Bvh::Pending stack[Bvh::stack_size];
-  triangle_walk(origin, dir, pad, t0, best, exit, stack).run();
+  triangle_walk(origin, dir, pad, t0, best, exit, stack, heading).run();
 }
 
 /// The triangles a helix (Gyration) may cross, an arc at a time in time order: an arc of
@@ -228,7 +240,7 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
     const auto scan = flight.scan_from(s);
     const auto exit = [&](const auto& w, double t) { return scan.exit_time(w, t); };
     ask_walls_beside_triangles(*this, true, best, exit);
-    if constexpr (is_straight<Flight>) search_triangles(s.x, s.v, 0, s.t, best, exit);
+    if constexpr (is_straight<Flight>) search_triangles(s.x, s.v, 0, s.t, best, exit, straight_from(s.x));
     else search_triangles_along_helix(scan, s.t, best, exit);
     ask_walls_beside_triangles(*this, false, best, exit);
   } else if constexpr (!std::is_same_v<Flight, PeriodicDriveFlight3>) {
@@ -277,7 +289,8 @@ void Table3::collisions(const FreeFlight3& flight, const State3* const* states, 
   }
   Bvh::Pending stacks[max_together][Bvh::stack_size];
   const auto walk_of = [&](int i) {
-    return triangle_walk(states[i]->x, states[i]->v, 0, states[i]->t, hits[i], exit_of(i), stacks[i]);
+    return triangle_walk(states[i]->x, states[i]->v, 0, states[i]->t, hits[i], exit_of(i), stacks[i],
+                         straight_from(states[i]->x));
   };
   boost::container::static_vector<decltype(walk_of(0)), max_together> walks;
   for (int i = 0; i < n; ++i) walks.push_back(walk_of(i));

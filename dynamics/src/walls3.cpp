@@ -37,6 +37,25 @@ TriangleWall::TriangleWall(const Vec3& a, const Vec3& b, const Vec3& c, double s
   span_slack = slack * longest / (b - a).cross(c - a).norm();  // slack / smallest altitude
 }
 
+/// Where the particle starts on the wall's side, the test needs normal·v > 0 in doubles (off by
+/// at most 3 ε |v|); strictly inside, det < 0.  With N = (b − a) × (c − a) of the vertices as
+/// stored, the exact det of the sheared vertices is −N·w (the swap of kx, ky keeps the sign)
+/// for the shear's direction w = (sx, sy, 1) in the ray's axes, which is within √2 ε of
+/// v / v_kz (sx, sy rounded once, |sx|, |sy| ≤ 1), with |v_kz| ≤ |v|: a flight moving away,
+/// N̂·h < −δ', has det ≥ |N| (δ' − 2 ε).  In doubles each sheared coordinate is within 6 ε R
+/// of its exact value (R = reach; |x|, |y| ≤ 2 R), each of u, v, e within 64 ε R² and det
+/// within 240 ε R²; 512 for margin.  The stored normal, rounded from the computed cross
+/// product, is within 16 ε |b − a| |c − a| / |N| of N̂.  So normal·h < −δ with
+/// δ = (512 ε R² + 16 ε |b − a| |c − a|) / |N| + 8 ε keeps det > 0 as computed, and normal·v < 0.
+double TriangleWall::facing_away_margin(double reach) const {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  const Vec3 ab = p[1] - p[0], ac = p[2] - p[0];
+  const double sides = ab.norm() * ac.norm();
+  const double area2 = ab.cross(ac).norm() - 8 * eps * sides;  // |N|, not above
+  if (!(area2 > 0)) return 1;
+  return std::min(1.0, (512 * eps * reach * reach + 16 * eps * sides) / area2 + 8 * eps);
+}
+
 double straight_exit_time(const State3& s, const PlaneWall& w, double t_end) {
   ScalarLanes<double> scalar;
   return straight_exit_time(scalar, ray3_lanes(s), plane_lanes(w), t_end);

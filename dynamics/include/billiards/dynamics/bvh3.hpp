@@ -1,12 +1,14 @@
 // The bounding-volume hierarchy over the triangles of a mesh that a 3-D table walks
 // (table3.cpp): built by the surface-area heuristic, eight children a node, their boxes
-// stored as floats rounded outward, walked into the nearest child entered first.
+// stored as floats rounded outward with the cones of their triangles' normals, walked into the
+// nearest child entered first.
 #pragma once
 
 #include "billiards/dynamics/bvh_lanes.hpp"
 #include "billiards/geometry3/region3.hpp"
 
 #include <bit>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -28,18 +30,30 @@ class Bvh {
   struct Box {
     Vec3 lo, hi;
   };
+  /// A triangle's outward unit normal n and the margin δ of its exit test: a straight flight
+  /// whose unit heading h has n·h < −δ never leaves the region through it
+  /// (TriangleWall::facing_away_margin).
+  struct Facing {
+    Vec3 normal;
+    double margin;
+  };
   /// A node's children, structure of arrays.  A child is an inner node (its index, ≥ 0) or a
   /// leaf, ~(first · max_leaf + count − 1) for the triangles [first, first + count) of the
   /// leaf order; an unused child has an empty box (lo = +∞, hi = −∞), which no ray enters.
+  /// Each child's cone [x, y, z, −t] holds its triangles' normals: a heading h with
+  /// h·(x, y, z) < −t in floats moves away from each of them by more than its margin, and no
+  /// straight flight so headed is walked into the child (Bvh::cone_of; all zero: every heading
+  /// is walked in).
   struct alignas(64) Node {
     float bound[2][3][width];  // [lo, hi][axis][child]
+    std::int8_t cone[4][width];
     int child[width];
   };
 
   Bvh() = default;
-  /// Over one box per triangle, each grown by `pad`; walked with the slab test of `slab_test`
-  /// (bvh_lanes.hpp), or the scalar one where it is null.
-  Bvh(const std::vector<Box>& boxes, double pad, bvh_lanes::Kernel slab_test);
+  /// Over one box per triangle, each grown by `pad`, and its Facing; walked with the slab test
+  /// of `slab_test` (bvh_lanes.hpp), or the scalar one where it is null.
+  Bvh(const std::vector<Box>& boxes, const std::vector<Facing>& facings, double pad, bvh_lanes::Kernel slab_test);
   /// The triangles in leaf order: position i holds triangle order()[i].
   const std::vector<int>& order() const { return order_; }
 
@@ -47,9 +61,13 @@ class Bvh {
   /// [0, tau_max], into the nearest child of a node first: `tau_max = leaf(first, count)` for
   /// each, so that a leaf may shrink the bound of the rest.  `fetch(first, count)` is told of a
   /// leaf as soon as its box is entered, so that its triangles may be fetched from memory
-  /// meanwhile.
+  /// meanwhile.  A path that only stays within the pad of the ray (a helix, a driven flight)
+  /// enters every such box; the ray of a straight flight (`Heading::straight`) passes over
+  /// those whose triangles it all moves away from.
+  enum class Heading { any, straight };
   template <class Leaf, class Fetch>
-  void walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const;
+  void walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
+            Heading heading = Heading::any) const;
   /// A child entered and not yet searched, on a walk's stack.
   struct Pending {
     int child;
@@ -72,7 +90,8 @@ class Bvh {
   /// Binary nodes of the build, before they are gathered into nodes of `width`.
   struct Split;
   int build(std::vector<Split>& tree, const std::vector<Box>& boxes, int first, int count, int depth);
-  int gather(const std::vector<Split>& tree, int split, double pad);
+  int gather(const std::vector<Split>& tree, const std::vector<Facing>& facings, int split, double pad);
+  void cone_of(const std::vector<Facing>& facings, const Split& split, Node& node, int i) const;
   static void prefetch(const Node& n) {
     for (std::size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(reinterpret_cast<const char*>(&n) + line);
   }
@@ -98,6 +117,7 @@ struct QuadLanes {
     __builtin_memcpy(&v, p, sizeof v);
     return v;
   }
+  static Num convert(const std::int8_t* p) { return Num{float(p[0]), float(p[1]), float(p[2]), float(p[3])}; }
   static Num later(Num a, Num b) { return a < b ? b : a; }
   static Num earlier(Num a, Num b) { return b < a ? b : a; }
   static void store(Num v, float* p) { __builtin_memcpy(p, &v, sizeof v); }
@@ -123,10 +143,11 @@ struct QuadLanes {
 /// space, and the origin's move to the boxes' frame (Bvh) within 2⁻⁵³ of |x|, so together they
 /// keep within the margin, on the side of entering, and no box the ray meets in doubles is
 /// culled.  A zero component of the direction has the inverse +∞: the slab spans everything
-/// (origin between the planes) or nothing.
+/// (origin between the planes) or nothing.  The heading of a straight ray is dir / |dir|
+/// rounded to floats (Bvh::cone_of allows for that), else zero.
 struct BvhRay : bvh_lanes::Ray {
   double time_scale;
-  BvhRay(const Vec3& origin, const Vec3& dir, double pad, double extent);
+  BvhRay(const Vec3& origin, const Vec3& dir, double pad, double extent, Bvh::Heading heading = Bvh::Heading::any);
   /// τ' of a bound τ, as a float not below it (2⁻²³ above before rounding to nearest).
   float time_bound(double tau) const { return float(tau * time_scale * (1 + 0x1p-23)); }
 };
@@ -137,8 +158,8 @@ template <class Leaf, class Fetch>
 class Bvh::Walk {
  public:
   Walk(const Bvh& bvh, const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
-       Pending* stack)
-      : bvh_(&bvh), ray_(origin - bvh.center_, dir, pad, bvh.extent_), tau_max_(ray_.time_bound(tau_max)),
+       Pending* stack, Heading heading = Heading::any)
+      : bvh_(&bvh), ray_(origin - bvh.center_, dir, pad, bvh.extent_, heading), tau_max_(ray_.time_bound(tau_max)),
         child_(bvh.nodes_.empty() ? ended : 0), leaf_(leaf), fetch_(fetch), stack_(stack) {}
   /// Searches the node or leaf next (false: the walk has ended, nothing is left).
   bool step() {
@@ -164,7 +185,8 @@ class Bvh::Walk {
 
  private:
   static constexpr int ended = std::numeric_limits<int>::min();  // (no leaf's code)
-  /// Pushes the children of node child_ that the ray enters and makes the nearest the next, so
+  /// Pushes the children of node child_ that the ray enters (and does not move away from) and
+  /// makes the nearest the next, so
   /// that the bound shrinks early; the others are fetched meanwhile, and stay in the node's
   /// order (sorting them costs more than it saves: the hit does not depend on the order, and
   /// the ray most often enters one or two).  False where it enters none.
@@ -173,8 +195,9 @@ class Bvh::Walk {
     float t_in[width];
     const int bottom = top_;
     const float* bound = &node.bound[0][0][0];
-    const unsigned entered = bvh_->slab_test_ ? bvh_->slab_test_(bound, ray_, tau_max_, t_in)
-                                              : detail::slab_test<detail::QuadLanes>(bound, ray_, tau_max_, t_in);
+    const std::int8_t* cone = &node.cone[0][0];
+    const unsigned entered = bvh_->slab_test_ ? bvh_->slab_test_(bound, cone, ray_, tau_max_, t_in)
+                                              : detail::slab_test<detail::QuadLanes>(bound, cone, ray_, tau_max_, t_in);
     for (unsigned mask = entered; mask; mask &= mask - 1) {
       const int i = std::countr_zero(mask);
       if (const int c = node.child[i]; c >= 0) prefetch(bvh_->nodes_[c]);
@@ -200,9 +223,10 @@ class Bvh::Walk {
 };
 
 template <class Leaf, class Fetch>
-void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch) const {
+void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
+               Heading heading) const {
   Pending stack[stack_size];
-  Walk<Leaf, Fetch>(*this, origin, dir, pad, tau_max, leaf, fetch, stack).run();
+  Walk<Leaf, Fetch>(*this, origin, dir, pad, tau_max, leaf, fetch, stack, heading).run();
 }
 
 template <class W>

@@ -96,11 +96,17 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   const Vec3& hi() const { return hi_; }
 
  private:
+  /// How far beyond the table's box, in units of its size, a straight flight's walk passes
+  /// over the triangles it moves away from (Bvh::Heading; their margins hold there).
+  static constexpr double straight_reach = 0.01;
+  /// Bvh::Heading::straight for a straight flight from x, where x is that near the box.
+  Bvh::Heading straight_from(const Vec3& x) const;
   template <class Exit>
   auto triangle_walk(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
-                     Bvh::Pending* stack) const;
+                     Bvh::Pending* stack, Bvh::Heading heading) const;
   template <class Exit>
-  void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const;
+  void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
+                        Bvh::Heading heading = Bvh::Heading::any) const;
   template <class Helix, class Exit>
   void search_triangles_along_helix(const Helix& helix, double t0, Hit3& best, Exit exit) const;
   /// The hit's state and contact, where a hit was found.

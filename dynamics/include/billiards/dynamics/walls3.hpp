@@ -83,6 +83,11 @@ struct alignas(64) TriangleWall {
   std::array<Vec3, 3> edge_normal;  // in-plane unit normals pointing out of the span
 
   TriangleWall(const Vec3& a, const Vec3& b, const Vec3& c, double slack);
+  /// A margin δ such that a straight flight from within `reach` of the vertices in each
+  /// coordinate, whose unit heading h has normal·h < −δ, never leaves through the triangle
+  /// (straight_exit_time is `never`): it moves away from it, and the exit test's rounding
+  /// cannot turn that around (walls3.cpp).  At least 1 for a triangle too thin to tell.
+  double facing_away_margin(double reach) const;
   /// Is x (on the plane, to rounding) within `slack` of the closed triangle?
   bool within_span(const Vec3& x) const {
     for (int k = 0; k < 3; ++k)
