@@ -186,10 +186,10 @@ class Bvh::Walk {
  private:
   static constexpr int ended = std::numeric_limits<int>::min();  // (no leaf's code)
   /// Pushes the children of node child_ that the ray enters (and does not move away from) and
-  /// makes the nearest the next, so
-  /// that the bound shrinks early; the others are fetched meanwhile, and stay in the node's
-  /// order (sorting them costs more than it saves: the hit does not depend on the order, and
-  /// the ray most often enters one or two).  False where it enters none.
+  /// makes the nearest the next, so that the bound shrinks early; the others are fetched
+  /// meanwhile, and stay in the node's order (sorting them costs more than it saves: the hit
+  /// does not depend on the order, and the ray most often enters one or two).  False where it
+  /// enters none.
   bool enter_children() {
     const Node& node = bvh_->nodes_[child_];
     float t_in[width];

@@ -4,9 +4,9 @@
 // target's namespace (Highway's vectors).  The same operations in the same order, each rounded
 // once (no fused multiply-add: -ffp-contract=off), on S::lanes children at a time: the same
 // children entered at the same times on every target.  The traits: Num; lanes; splat(x);
-// load(p), the floats p[0, lanes); convert(p), the bytes p[0, lanes) as floats; later(a, b), b where a < b, else a; earlier(a, b), b where
-// b < a, else a (a NaN b, from 0 · ∞, is passed over by both); store(v, p); entered(in, out),
-// bit i set where in ≤ out in lane i.
+// load(p), the floats p[0, lanes); convert(p), the bytes p[0, lanes) as floats; later(a, b),
+// b where a < b, else a; earlier(a, b), b where b < a, else a (a NaN b, from 0 · ∞, is passed
+// over by both); store(v, p); entered(in, out), bit i set where in ≤ out in lane i.
 // (No include guard: included once into each namespace.)
 
 /// One ray against the boxes of a node's eight children, `bound` [lo, hi][axis][child] as
