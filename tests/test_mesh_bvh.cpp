@@ -31,18 +31,25 @@ geometry3::Shape3 mesh_shape(const std::string& name) {
   return geometry3::load_shape3(BILLIARDS_SOURCE_DIR "/shapes/3d/" + name + ".yaml");
 }
 
+/// A table and its triangles' indices in the mesh's order (the inverse of Table3::piece_of).
+struct MeshTable {
+  const Table3& table;
+  std::vector<int> in_mesh_order;
+  explicit MeshTable(const Table3& t) : table(t), in_mesh_order(t.triangles().size()) {
+    for (int i = 0; i < int(in_mesh_order.size()); ++i)
+      in_mesh_order[std::size_t(table.piece_of({wall_kind3::triangle, i}))] = i;
+  }
+};
+
 /// The earliest exit through any triangle, each asked up to `t_end` in the mesh's order,
 /// without the BVH: of several crossed at the same time, the first in the mesh.
 template <class Flight>
-Hit3 every_triangle(const Table3& table, const Flight& flight, const typename Flight::State& s, double t_end,
+Hit3 every_triangle(const MeshTable& mesh, const Flight& flight, const typename Flight::State& s, double t_end,
                     int& ties) {
-  const auto& triangles = table.triangles();
-  std::vector<int> in_mesh_order(triangles.size());
-  for (int i = 0; i < int(triangles.size()); ++i)
-    in_mesh_order[std::size_t(table.piece_of({wall_kind3::triangle, i}))] = i;
+  const auto& triangles = mesh.table.triangles();
   Hit3 best;
   best.t = t_end;
-  for (const int i : in_mesh_order) {
+  for (const int i : mesh.in_mesh_order) {
     const double t = flight.exit_time(s, triangles[i], t_end);
     if (t == best.t && best.found()) ++ties;
     if (t < best.t) best.t = t, best.wall = {wall_kind3::triangle, i};
@@ -53,10 +60,10 @@ Hit3 every_triangle(const Table3& table, const Flight& flight, const typename Fl
 /// The BVH's hit is the scan's: the same time bit for bit, through the same triangle, the first
 /// in the mesh of those crossed at that very time (a tie at a shared edge or vertex).
 template <class Flight>
-void check_first_hit(const Table3& table, const Flight& flight, const typename Flight::State& s, double t_end,
+void check_first_hit(const MeshTable& mesh, const Flight& flight, const typename Flight::State& s, double t_end,
                      int& compared, int& ties) {
-  const auto hit = table.collision(flight, s, t_end);
-  const Hit3 scan = every_triangle(table, flight, s, t_end, ties);
+  const auto hit = mesh.table.collision(flight, s, t_end);
+  const Hit3 scan = every_triangle(mesh, flight, s, t_end, ties);
   REQUIRE(hit.found() == scan.found());
   if (!hit.found()) return;
   CHECK(hit.t == scan.t);
@@ -92,6 +99,7 @@ TEST_CASE("the BVH finds the first hit of every triangle tried in turn: rays, ra
     const auto shape = mesh_shape(name);
     const auto region = moved(shape.region, offset);
     const Table3 table(region);
+    const MeshTable mesh(table);
     const auto& triangles = table.triangles();
     const FreeFlight3 flight;
     ParticleRng rng(7, 0);
@@ -100,7 +108,7 @@ TEST_CASE("the BVH finds the first hit of every triangle tried in turn: rays, ra
     for (int particle = 0; particle < 10; ++particle) {
       State3 s = sample_microcanonical(table, 1.0, rng);
       for (int k = 0; k < 100; ++k) {
-        check_first_hit(table, flight, s, never, compared, ties);
+        check_first_hit(mesh, flight, s, never, compared, ties);
         bounce(flight, s, table.collision(flight, s));
       }
     }
@@ -111,7 +119,7 @@ TEST_CASE("the BVH finds the first hit of every triangle tried in turn: rays, ra
       const int a = k % 3, b = (a + 1) % 3;
       const double along = k % 5 == 0 ? 0.0 : k % 5 == 1 ? 0.5 : rng.uniform();
       s.v = p[a] + along * (p[b] - p[a]) - s.x;
-      check_first_hit(table, flight, s, never, compared, ties);
+      check_first_hit(mesh, flight, s, never, compared, ties);
     }
     CHECK(compared == 2500);
     if (offset == origin) CHECK(ties > 100);  // (rays through vertices and edges cross several at once)
@@ -123,6 +131,7 @@ TEST_CASE("the BVH grown by a tube finds the first hit of every triangle: helice
     INFO(name);
     const auto shape = mesh_shape(name);
     const Table3 table(shape.region);
+    const MeshTable mesh(table);
     const bool big = table.triangles().size() > 1000;
     ParticleRng rng(8, 0);
     int compared = 0, ties = 0;
@@ -131,7 +140,7 @@ TEST_CASE("the BVH grown by a tube finds the first hit of every triangle: helice
       const MagneticFlight3 flight{random_direction(rng) / rc};
       State3 s = sample_microcanonical(table, 1.0, rng);
       for (int k = 0; k < (big ? 6 : 40); ++k) {
-        check_first_hit(table, flight, s, s.t + 20, compared, ties);
+        check_first_hit(mesh, flight, s, s.t + 20, compared, ties);
         bounce(flight, s, table.collision(flight, s, s.t + 20));
       }
     }
@@ -140,7 +149,7 @@ TEST_CASE("the BVH grown by a tube finds the first hit of every triangle: helice
       const PeriodicDriveFlight3 flight{10 * random_direction(rng), omega, 2 * geometry::pi * rng.uniform()};
       auto s = flight.start(sample_microcanonical(table, 1.0, rng));
       for (int k = 0; k < (big ? 6 : 40); ++k) {
-        check_first_hit(table, flight, s, never, compared, ties);
+        check_first_hit(mesh, flight, s, never, compared, ties);
         bounce(flight, s, table.collision(flight, s));
       }
     }
@@ -155,6 +164,7 @@ TEST_CASE("a helix with no horizon (billiard trajectory without --time) finds it
   // before s.t + 20, which each helix here reaches sooner.
   const auto shape = mesh_shape("bumpy-100k");
   const Table3 table(shape.region);
+  const MeshTable mesh(table);
   ParticleRng rng(9, 0);
   int compared = 0, ties = 0;
   for (const double rc : {10.0, 0.1}) {
@@ -162,7 +172,7 @@ TEST_CASE("a helix with no horizon (billiard trajectory without --time) finds it
     State3 s = sample_microcanonical(table, 1.0, rng);
     for (int k = 0; k < 6; ++k) {
       const auto hit = table.collision(flight, s, never);
-      const Hit3 scan = every_triangle(table, flight, s, s.t + 20, ties);
+      const Hit3 scan = every_triangle(mesh, flight, s, s.t + 20, ties);
       REQUIRE(scan.found());
       REQUIRE(hit.found());
       CHECK(hit.t == scan.t);
