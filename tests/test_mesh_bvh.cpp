@@ -277,7 +277,8 @@ TEST_CASE("the slab test in floats enters every child a ray meets, no later, the
     for (int i = 0; i < Bvh::width; ++i) {
       float in = 0, out = tau_bound;
       for (int k = 0; k < 3; ++k) {
-        const float a = node.bound[ray.near[k]][k][i], b = node.bound[1 - ray.near[k]][k][i];
+        const int near = dir[k] < 0;  // (the side the ray enters the slab through)
+        const float a = node.bound[near][k][i], b = node.bound[1 - near][k][i];
         const float ta = (a - ray.enter[k]) * ray.inv[k], tb = (b - ray.leave[k]) * ray.inv[k];
         in = in < ta ? ta : in;
         out = tb < out ? tb : out;

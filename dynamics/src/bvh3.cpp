@@ -62,11 +62,14 @@ BvhRay::BvhRay(const Vec3& origin, const Vec3& dir, double pad, double extent, B
     // 1/d' for d' = dir[k] / time_scale (exact), rounded once.
     const double inverse = dir[k] != 0 ? time_scale / dir[k] : std::numeric_limits<double>::infinity();
     inv[k] = float(inverse);  // (±∞ beyond the floats)
-    near[k] = inverse < 0;
+    // (The near side of the slab: the hi bound where the ray moves down the axis.)
+    const bool near = inverse < 0;
+    enter_at[k] = (near * 3 + k) * bvh_lanes::width;
+    leave_at[k] = ((1 - near) * 3 + k) * bvh_lanes::width;
     const double x = origin[k], moved = pad + 0x1p-20 * (extent + std::abs(x) + pad);
     const float up = float(x + moved), down = float(x - moved);
-    enter[k] = near[k] ? down : up;
-    leave[k] = near[k] ? up : down;
+    enter[k] = near ? down : up;
+    leave[k] = near ? up : down;
   }
   // (Scaled first: |dir|² may be beyond the doubles.)
   const Vec3 unit = heading_ == Bvh::Heading::straight && largest > 0 ? Vec3((dir / largest).normalized()) : Vec3::Zero();

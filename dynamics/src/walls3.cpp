@@ -1,5 +1,5 @@
 // Exit times of straight 3-D flights (see walls3.hpp for the rules): through planes and spheres
-// straight_exit3-inl.hpp's, the lanes' own source; through triangles the watertight test.
+// straight_exit3-inl.hpp's, the lanes' own source (through triangles: walls3.hpp).
 #include "billiards/dynamics/walls3.hpp"
 
 #include "billiards/dynamics/predicates.hpp"
@@ -59,35 +59,6 @@ double TriangleWall::facing_away_margin(double reach) const {
 double straight_exit_time(const State3& s, const PlaneWall& w, double t_end) {
   ScalarLanes<double> scalar;
   return straight_exit_time(scalar, ray3_lanes(s), plane_lanes(w), t_end);
-}
-
-double straight_exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double t_end) {
-  const double beyond = w.normal.dot(s.x - w.p[0]);
-  if (beyond > w.slack) return never;  // elsewhere in a non-convex region
-  if (beyond >= 0) return w.normal.dot(s.v) > 0 && w.within_span(s.x) ? s.t : never;
-  // Strictly on the region's side: the watertight test, for crossings ahead only.  An outward
-  // crossing has all edge functions ≤ 0 and det < 0 (counter-clockwise seen from outside).
-  // A vertex relative to the origin, its coordinates in the ray's order kx, ky, kz, sheared
-  // (each coordinate read from the wall by its index, with nothing stored between).
-  const auto sheared = [&](const Vec3& p, double& x, double& y, double& z) {
-    z = p[ray.kz] - ray.origin[ray.kz];
-    x = (p[ray.kx] - ray.origin[ray.kx]) - ray.sx * z;
-    y = (p[ray.ky] - ray.origin[ray.ky]) - ray.sy * z;
-  };
-  double ax, ay, az, bx, by, bz, cx, cy, cz;
-  sheared(w.p[0], ax, ay, az);
-  sheared(w.p[1], bx, by, bz);
-  sheared(w.p[2], cx, cy, cz);
-  const double u = cx * by - cy * bx, v = ax * cy - ay * cx, e = bx * ay - by * ax;
-  const double det = u + v + e;
-  // Barycentric coordinates u/det, v/det, e/det ≥ −span_slack: the exact watertight test,
-  // widened by the slack so that a crossing within rounding of an edge is also caught by the
-  // triangle on whose side the particle starts (the neighbour may be tested at dt = 0).
-  if (!(det < 0) || std::max({u, v, e}) > -w.span_slack * det) return never;
-  const double T = ray.sz * (u * az + v * bz + e * cz);
-  // beyond < 0 puts the crossing ahead; a negative T/det is rounding.
-  const double t = s.t + std::max(0.0, T / det);
-  return t <= t_end ? t : never;
 }
 
 double straight_exit_time(const State3& s, const SphereWall& w, double t_end) {

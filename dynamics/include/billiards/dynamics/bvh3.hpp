@@ -193,24 +193,33 @@ class Bvh::Walk {
   bool enter_children() {
     const Node& node = bvh_->nodes_[child_];
     float t_in[width];
-    const int bottom = top_;
     const float* bound = &node.bound[0][0][0];
     const std::int8_t* cone = &node.cone[0][0];
     const unsigned entered = bvh_->slab_test_ ? bvh_->slab_test_(bound, cone, ray_, tau_max_, t_in)
                                               : detail::slab_test<detail::QuadLanes>(bound, cone, ray_, tau_max_, t_in);
+    if (entered == 0) return false;
+    // One child entered: the next, with nothing pushed.
+    if ((entered & (entered - 1)) == 0) return (child_ = fetch(node.child[std::countr_zero(entered)])), true;
+    // (In locals: the compiler cannot tell the stack's stores from top_ and nodes_.)
+    int top = top_;
+    const int bottom = top;
     for (unsigned mask = entered; mask; mask &= mask - 1) {
       const int i = std::countr_zero(mask);
-      if (const int c = node.child[i]; c >= 0) prefetch(bvh_->nodes_[c]);
-      else fetch_(~c / max_leaf, ~c % max_leaf + 1);
       // The nearest so far stays on top.
-      stack_[top_] = {node.child[i], t_in[i]};
-      const bool farther = top_ > bottom && stack_[top_ - 1].t_in < t_in[i];
-      std::swap(stack_[top_], stack_[top_ - farther]);
-      ++top_;
+      stack_[top] = {fetch(node.child[i]), t_in[i]};
+      const bool farther = top > bottom && stack_[top - 1].t_in < t_in[i];
+      std::swap(stack_[top], stack_[top - farther]);
+      ++top;
     }
-    if (top_ == bottom) return false;
-    child_ = stack_[--top_].child;  // (entered, so t_in ≤ tau_max)
+    child_ = stack_[--top].child;  // (entered, so t_in ≤ tau_max)
+    top_ = top;
     return true;
+  }
+  /// Starts fetching a child from memory (a node's boxes or a leaf's triangles); returns it.
+  int fetch(int c) const {
+    if (c >= 0) prefetch(bvh_->nodes_[c]);
+    else fetch_(~c / max_leaf, ~c % max_leaf + 1);
+    return c;
   }
 
   const Bvh* bvh_;

@@ -15,12 +15,14 @@ inline constexpr int width = 8;
 /// A ray as the slab test reads it, in floats (detail::BvhRay makes one): for each axis the
 /// origin as moved towards the side through which the ray enters the slab (`enter`) and
 /// towards the side it leaves through (`leave`), the inverse `inv` of its direction (±∞
-/// where that is beyond the floats), and the bounds it enters through (near: 0 lo, 1 hi);
+/// where that is beyond the floats), and where in a node's `bound` the children's bounds it
+/// enters and leaves through start (`enter_at`, `leave_at`: the lo or the hi row, by the sign
+/// of its direction; offsets, so that the test picks its rows without arithmetic);
 /// `heading`, the unit direction of a straight flight, which cannot leave the region through
 /// a triangle it moves away from, or zero (a path that only stays near the ray).
 struct Ray {
   float enter[3], leave[3], inv[3], heading[3];
-  int near[3];
+  int enter_at[3], leave_at[3];
 };
 
 /// Bit i of the result set: the ray is inside child i's box for some τ in [0, tau_max], from

@@ -13,8 +13,8 @@
 /// floats: bit i of the result set where the ray is inside child i's box for some τ in
 /// [0, tau_max], from τ = t_in[i], and its heading does not move away from the cone of child
 /// i's normals, `cone` [x, y, z, −t][child] (bvh_lanes::Kernel).  The side of each slab the
-/// ray enters through is chosen by the sign of its direction (Ray::near), so that an empty box
-/// is never entered.
+/// ray enters through is chosen by the sign of its direction (Ray::enter_at), so that an empty
+/// box is never entered.
 template <class S>
 [[gnu::always_inline]] inline unsigned slab_test(const float* bound, const std::int8_t* cone,
                                                  const bvh_lanes::Ray& ray, float tau_max, float* t_in) {
@@ -24,8 +24,7 @@ template <class S>
   const float *enters[3], *leaves[3];
   Num enter[3], leave[3], inv[3], heading[3];
   for (int k = 0; k < 3; ++k) {
-    enters[k] = bound + (ray.near[k] * 3 + k) * width;
-    leaves[k] = bound + ((1 - ray.near[k]) * 3 + k) * width;
+    enters[k] = bound + ray.enter_at[k], leaves[k] = bound + ray.leave_at[k];
     enter[k] = S::splat(ray.enter[k]), leave[k] = S::splat(ray.leave[k]), inv[k] = S::splat(ray.inv[k]);
     heading[k] = S::splat(ray.heading[k]);
   }

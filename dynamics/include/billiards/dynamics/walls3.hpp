@@ -32,6 +32,7 @@
 #include "billiards/dynamics/walls.hpp"
 #include "billiards/geometry3/region3.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -140,8 +141,37 @@ struct SphereWall {
 
 /// The exit times of straight flights (see the rules above; FreeFlight3 calls them).
 double straight_exit_time(const State3& s, const PlaneWall& w, double t_end);
-double straight_exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double t_end);
 double straight_exit_time(const State3& s, const SphereWall& w, double t_end);
+/// Through a triangle, the watertight test (inline: a BVH leaf asks its triangles in a loop,
+/// which then reads the ray's numbers once).
+inline double straight_exit_time(const State3& s, const Ray& ray, const TriangleWall& w, double t_end) {
+  const double beyond = w.normal.dot(s.x - w.p[0]);
+  if (beyond > w.slack) return never;  // elsewhere in a non-convex region
+  if (beyond >= 0) return w.normal.dot(s.v) > 0 && w.within_span(s.x) ? s.t : never;
+  // Strictly on the region's side: the watertight test, for crossings ahead only.  An outward
+  // crossing has all edge functions ≤ 0 and det < 0 (counter-clockwise seen from outside).
+  // A vertex relative to the origin, its coordinates in the ray's order kx, ky, kz, sheared
+  // (each coordinate read from the wall by its index, with nothing stored between).
+  const auto sheared = [&](const Vec3& p, double& x, double& y, double& z) {
+    z = p[ray.kz] - ray.origin[ray.kz];
+    x = (p[ray.kx] - ray.origin[ray.kx]) - ray.sx * z;
+    y = (p[ray.ky] - ray.origin[ray.ky]) - ray.sy * z;
+  };
+  double ax, ay, az, bx, by, bz, cx, cy, cz;
+  sheared(w.p[0], ax, ay, az);
+  sheared(w.p[1], bx, by, bz);
+  sheared(w.p[2], cx, cy, cz);
+  const double u = cx * by - cy * bx, v = ax * cy - ay * cx, e = bx * ay - by * ax;
+  const double det = u + v + e;
+  // Barycentric coordinates u/det, v/det, e/det ≥ −span_slack: the exact watertight test,
+  // widened by the slack so that a crossing within rounding of an edge is also caught by the
+  // triangle on whose side the particle starts (the neighbour may be tested at dt = 0).
+  if (!(det < 0) || std::max({u, v, e}) > -w.span_slack * det) return never;
+  const double T = ray.sz * (u * az + v * bz + e * cz);
+  // beyond < 0 puts the crossing ahead; a negative T/det is rounding.
+  const double t = s.t + std::max(0.0, T / det);
+  return t <= t_end ? t : never;
+}
 
 /// Exact sign of r²|v|² − |(x − c) × v|² (the ray meets the sphere iff > 0), filtered.
 int sphere_discriminant_sign_filtered(const Vec3& x, const Vec3& c, const Vec3& v, double r);
