@@ -143,10 +143,9 @@ auto Table3::triangle_walk(const Vec3& origin, const Vec3& dir, double pad, doub
 }
 
 template <class Exit>
-void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
-                              Bvh::Heading heading) const {
+void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const {
   Bvh::Pending stack[Bvh::stack_size];
-  triangle_walk(origin, dir, pad, t0, best, exit, stack, heading).run();
+  triangle_walk(origin, dir, pad, t0, best, exit, stack, Bvh::Heading::any).run();
 }
 
 /// The triangles a helix (Gyration) may cross, an arc at a time in time order: an arc of
@@ -236,12 +235,15 @@ template <class Flight>
 FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight::State& s, double t_end) const {
   FlightHit<Flight> best;
   best.t = t_end;
-  if constexpr (is_straight<Flight> || requires { flight.scan_from(s).tube(); }) {
+  if constexpr (is_straight<Flight>) {
+    const State3* const states[] = {&s};
+    collisions(flight, states, &t_end, 1, &best);  // (a walk alone is a walk together with none)
+    return best;
+  } else if constexpr (requires { flight.scan_from(s).tube(); }) {
     const auto scan = flight.scan_from(s);
     const auto exit = [&](const auto& w, double t) { return scan.exit_time(w, t); };
     ask_walls_beside_triangles(*this, true, best, exit);
-    if constexpr (is_straight<Flight>) search_triangles(s.x, s.v, 0, s.t, best, exit, straight_from(s.x));
-    else search_triangles_along_helix(scan, s.t, best, exit);
+    search_triangles_along_helix(scan, s.t, best, exit);
     ask_walls_beside_triangles(*this, false, best, exit);
   } else if constexpr (!std::is_same_v<Flight, PeriodicDriveFlight3>) {
     const auto exit = [&](const auto& w, double t) { return flight.exit_time(s, w, t); };

@@ -65,7 +65,8 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   static constexpr int max_together = 16;
   /// hits[i] = collision(flight, *states[i], t_end[i]) for i < n ≤ max_together, the BVH walks
   /// of the flights run together (Bvh::walk_together, each its own walk): the same hits, bit
-  /// for bit, with the triangles' fetches from memory overlapped.
+  /// for bit, with the triangles' fetches from memory overlapped (a straight flight's
+  /// `collision` is this with n = 1).
   void collisions(const FreeFlight3& flight, const State3* const* states, const double* t_end, int n,
                   FlightHit<FreeFlight3>* hits) const;
   /// Is x in the closed region (the independent point-in-region test of geometry3)?
@@ -105,8 +106,7 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   auto triangle_walk(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
                      Bvh::Pending* stack, Bvh::Heading heading) const;
   template <class Exit>
-  void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
-                        Bvh::Heading heading = Bvh::Heading::any) const;
+  void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const;
   template <class Helix, class Exit>
   void search_triangles_along_helix(const Helix& helix, double t0, Hit3& best, Exit exit) const;
   /// The hit's state and contact, where a hit was found.
