@@ -3,8 +3,9 @@
 // bit, from states along orbits (each starting on the wall it has just left) with and without
 // horizons, in every flat table (segments, focusing and dispersing arcs, holes, elliptic arcs)
 // and in one with more walls than a vector has lanes, in weak and strong fields of both signs;
-// 3-D straight flights in tables of planes and spheres (focusing and dispersing); and ensembles
-// equal to `simulate`, particle by particle, for any thread count.
+// 3-D straight flights in tables of planes and spheres (focusing and dispersing) and in meshes,
+// in batches and as a stream whose lanes are refilled in any order; and ensembles equal to
+// `simulate`, particle by particle, for any thread count.
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/ensemble.hpp"
 #include "billiards/dynamics/free_lockstep.hpp"
@@ -259,6 +260,45 @@ TEST_CASE("free lock step in 3-D: each batch's hits are the scalar search's, bit
 
 TEST_CASE("free lock step in 3-D: the BVH walks of a batch run together find the scalar search's hits, bit for bit, in meshes") {
   for (const auto& t : mesh_tables()) check_batches(t->name, t->table, FreeFlight3{});
+}
+
+TEST_CASE("free lock step in 3-D: a stream of flights, each lane given its next as soon as its hit is found, finds the scalar search's hits, bit for bit, in meshes") {
+  using dynamics::FlightHit;
+  using dynamics::NextFlight;
+  using dynamics::State3;
+  const double horizons[] = {dynamics::never, 1e-3, 0.7, 3};  // in units of the table's size
+  for (const auto& t : mesh_tables())
+    for (const int lanes : {dynamics::Table3::max_together, 5}) {
+      const auto states = states_along_orbits(t->table, FreeFlight3{}, 6, 2000);
+      const double size = (t->table.hi() - t->table.lo()).norm();
+      std::vector<double> t_end(states.size());
+      for (std::size_t k = 0; k < states.size(); ++k)
+        t_end[k] = horizons[k % 4] == dynamics::never ? dynamics::never : states[k].t + horizons[k % 4] * size;
+      // The states handed out in turn to whichever lane asks; the hits as the lanes are told them.
+      std::vector<FlightHit<FreeFlight3>> hits(states.size());
+      std::vector<std::size_t> told;
+      std::size_t handed = 0, searching[dynamics::Table3::max_together];
+      t->table.collision_stream(FreeFlight3{}, lanes, [&](int i, const FlightHit<FreeFlight3>* hit) {
+        if (hit) hits[searching[i]] = *hit, told.push_back(searching[i]);
+        if (handed == states.size()) return NextFlight<State3>{};
+        searching[i] = handed;
+        return NextFlight<State3>{&states[handed], t_end[handed++]};
+      });
+      INFO(t->name << ", " << lanes << " lanes, " << states.size() << " states");
+      REQUIRE(told.size() == states.size());
+      int mismatches = 0, found = 0, out_of_turn = 0;
+      for (std::size_t k = 0; k < states.size(); ++k) {
+        const auto expected = dynamics::collision(t->table, FreeFlight3{}, states[k], t_end[k]);
+        found += expected.found();
+        mismatches += !same_hit(hits[k], expected);
+        out_of_turn += k > 0 && told[k] < told[k - 1];
+      }
+      CHECK(mismatches == 0);
+      CHECK(found > int(states.size()) / 2);
+      CHECK(found < int(states.size()));
+      // Lanes were refilled while others walked on: the hits were not told in the states' order.
+      CHECK(out_of_turn > int(states.size()) / 10);
+    }
 }
 
 TEST_CASE("free lock step in 3-D: the kernel itself finds the hits on planes and spheres, at the scalar search's times") {

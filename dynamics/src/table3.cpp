@@ -10,6 +10,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace billiards::dynamics {
 
@@ -21,6 +22,9 @@ Table3::BasicTable(const Region3& region, std::int64_t simd_target) : region_(re
   const auto m = measures_of(region);
   lo_ = m.bbox_lo;
   hi_ = m.bbox_hi;
+  const Vec3 margin = straight_reach * (hi_ - lo_);
+  straight_lo_ = lo_ - margin;
+  straight_hi_ = hi_ + margin;
   const double slack = slack_ulps * std::max(lo_.cwiseAbs().maxCoeff(), hi_.cwiseAbs().maxCoeff());
   slack_ = slack;
   auto& planes = mutable_walls<PlaneWall>();
@@ -122,30 +126,31 @@ double time_to_leave(const Tube3& tube, const Vec3& lo, const Vec3& hi) {
 }  // namespace
 
 Bvh::Heading Table3::straight_from(const Vec3& x) const {
-  const Vec3 margin = straight_reach * (hi_ - lo_);
-  const bool near = (x.array() >= (lo_ - margin).array()).all() && (x.array() <= (hi_ + margin).array()).all();
+  const bool near = (x.array() >= straight_lo_.array()).all() && (x.array() <= straight_hi_.array()).all();
   return near ? Bvh::Heading::straight : Bvh::Heading::any;
 }
 
-/// The walk of the BVH along the ray `origin + τ dir` (τ after `t0`), boxes grown by `pad`,
-/// that keeps in `best` the earliest exit time `exit(triangle)` found, on `stack`.
+/// A walk of the BVH, on `stack`, that keeps in `best` the earliest exit time `exit(triangle)`
+/// found (after the time t0), not yet set out (Bvh::Walk::set_out).
 template <class Exit>
-auto Table3::triangle_walk(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
-                           Bvh::Pending* stack, Bvh::Heading heading) const {
+auto Table3::triangle_walk(Hit3& best, const double& t0, Exit exit, Bvh::Pending* stack) const {
   const auto& walls = triangles();
   return Bvh::Walk(
-      bvh_, origin, dir, pad, tau_bound(best.t, t0),
-      [&walls, &order = bvh_.order(), &best, t0, exit](int first, int count) {
+      bvh_,
+      [&walls, &order = bvh_.order(), &best, &t0, exit](int first, int count) {
         ask_triangles(walls, order, first, count, best, exit);
         return tau_bound(best.t, t0);
       },
-      [&walls](int first, int count) { fetch_leaf(walls, first, count); }, stack, heading);
+      [&walls](int first, int count) { fetch_leaf(walls, first, count); }, stack);
 }
 
+/// The walk along the ray `origin + τ dir` (τ after `t0`), boxes grown by `pad`.
 template <class Exit>
 void Table3::search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const {
   Bvh::Pending stack[Bvh::stack_size];
-  triangle_walk(origin, dir, pad, t0, best, exit, stack, Bvh::Heading::any).run();
+  auto walk = triangle_walk(best, t0, exit, stack);
+  walk.set_out(origin, dir, pad, tau_bound(best.t, t0));
+  walk.run();
 }
 
 /// The triangles a helix (Gyration) may cross, an arc at a time in time order: an arc of
@@ -278,29 +283,49 @@ void Table3::complete(const Flight& flight, const typename Flight::State& s, Fli
   std::tie(hit.point, hit.normal) = contact(hit.wall, hit.state.x);
 }
 
+void Table3::collision_stream(const FreeFlight3& flight, int lanes, NextFlights3 next) const {
+  assert(lanes <= max_together);
+  // A lane's flight: from *s (null before its first), its exit times, the best hit so far.
+  struct Lane {
+    const State3* s = nullptr;
+    double t0;
+    std::optional<StraightScan3> scan;
+    FlightHit<FreeFlight3> hit;
+  };
+  Lane lane[max_together];
+  const auto exit_of = [](const Lane& l) {
+    return [&scan = l.scan](const auto& w, double t) { return scan->exit_time(w, t); };
+  };
+  Bvh::Pending stacks[max_together][Bvh::stack_size];
+  boost::container::static_vector<decltype(triangle_walk(lane[0].hit, lane[0].t0, exit_of(lane[0]), stacks[0])),
+                                   max_together>
+      walks;
+  for (int i = 0; i < lanes; ++i) walks.push_back(triangle_walk(lane[i].hit, lane[i].t0, exit_of(lane[i]), stacks[i]));
+  // Lane i's walk has ended: its flight's hit completed and told, the next flight set out.
+  Bvh::walk_stream(walks.data(), lanes, [&](int i) {
+    Lane& l = lane[i];
+    if (l.s) {
+      ask_walls_beside_triangles(*this, false, l.hit, exit_of(l));
+      complete(flight, *l.s, l.hit);
+    }
+    const NextFlight<State3> f = next(i, l.s ? &l.hit : nullptr);
+    if (!(l.s = f.state)) return false;
+    l.t0 = l.s->t;
+    l.scan.emplace(*l.s);
+    l.hit = {};
+    l.hit.t = f.t_end;
+    ask_walls_beside_triangles(*this, true, l.hit, exit_of(l));
+    walks[i].set_out(l.s->x, l.s->v, 0, tau_bound(l.hit.t, l.t0), straight_from(l.s->x));
+    return true;
+  });
+}
+
 void Table3::collisions(const FreeFlight3& flight, const State3* const* states, const double* t_end, int n,
                         FlightHit<FreeFlight3>* hits) const {
-  assert(n <= max_together);
-  boost::container::static_vector<StraightScan3, max_together> scans;
-  const auto exit_of = [&scans](int i) { return [&scan = scans[i]](const auto& w, double t) { return scan.exit_time(w, t); }; };
-  for (int i = 0; i < n; ++i) {
-    scans.emplace_back(*states[i]);
-    hits[i] = {};
-    hits[i].t = t_end[i];
-    ask_walls_beside_triangles(*this, true, hits[i], exit_of(i));
-  }
-  Bvh::Pending stacks[max_together][Bvh::stack_size];
-  const auto walk_of = [&](int i) {
-    return triangle_walk(states[i]->x, states[i]->v, 0, states[i]->t, hits[i], exit_of(i), stacks[i],
-                         straight_from(states[i]->x));
-  };
-  boost::container::static_vector<decltype(walk_of(0)), max_together> walks;
-  for (int i = 0; i < n; ++i) walks.push_back(walk_of(i));
-  Bvh::walk_together(walks.data(), n);
-  for (int i = 0; i < n; ++i) {
-    ask_walls_beside_triangles(*this, false, hits[i], exit_of(i));
-    complete(flight, *states[i], hits[i]);
-  }
+  collision_stream(flight, n, [&](int i, const FlightHit<FreeFlight3>* hit) {
+    if (hit) return hits[i] = *hit, NextFlight<State3>{};
+    return NextFlight<State3>{states[i], t_end[i]};
+  });
 }
 
 template FlightHit<FreeFlight3> Table3::collision(const FreeFlight3&, const State3&, double) const;

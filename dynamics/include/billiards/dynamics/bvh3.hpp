@@ -8,6 +8,7 @@
 #include "billiards/geometry3/region3.hpp"
 
 #include <bit>
+#include <cassert>
 #include <cstdint>
 #include <limits>
 #include <utility>
@@ -77,14 +78,17 @@ class Bvh {
   /// it splits at the median: at most 31 more levels), each node popped pushing at most `width`.
   static constexpr int max_depth = 64, stack_size = (width - 1) * max_depth + 1;
   /// The same walk a step at a time (a node's children tested, or a leaf asked), on a stack
-  /// of stack_size entries: `walk` runs one to its end; `walk_together` runs several in turns.
+  /// of stack_size entries: `walk` runs one to its end; `walk_stream` runs several in turns.
   template <class Leaf, class Fetch>
   class Walk;
-  /// Runs the walks a step each in turn until every one has ended, so that the nodes and
-  /// triangles one walk fetches arrive while the others step (a walk alone waits for each
-  /// fetch); each walk takes the steps it takes alone.
-  template <class W>
-  static void walk_together(W* walks, int n);
+  /// Runs the walks of n ≤ 32 lanes a step each in turn, so that the nodes and triangles one
+  /// walk fetches arrive while the others step (a walk alone waits for each fetch).  When lane
+  /// i's walk has ended (as each has before its first), `next(i)` sets out its next walk
+  /// (Walk::set_out; true) or closes the lane (false), so that as many walks stay in flight as
+  /// there are flights to search; each walk takes the steps it takes alone.  Until every lane
+  /// is closed.
+  template <class W, class Next>
+  static void walk_stream(W* walks, int n, Next next);
 
  private:
   /// Binary nodes of the build, before they are gathered into nodes of `width`.
@@ -146,7 +150,8 @@ struct QuadLanes {
 /// (origin between the planes) or nothing.  The heading of a straight ray is dir / |dir|
 /// rounded to floats (Bvh::cone_of allows for that), else zero.
 struct BvhRay : bvh_lanes::Ray {
-  double time_scale;
+  double time_scale = 1;
+  BvhRay() = default;
   BvhRay(const Vec3& origin, const Vec3& dir, double pad, double extent, Bvh::Heading heading = Bvh::Heading::any);
   /// τ' of a bound τ, as a float not below it (2⁻²³ above before rounding to nearest).
   float time_bound(double tau) const { return float(tau * time_scale * (1 + 0x1p-23)); }
@@ -157,10 +162,16 @@ struct BvhRay : bvh_lanes::Ray {
 template <class Leaf, class Fetch>
 class Bvh::Walk {
  public:
-  Walk(const Bvh& bvh, const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
-       Pending* stack, Heading heading = Heading::any)
-      : bvh_(&bvh), ray_(origin - bvh.center_, dir, pad, bvh.extent_, heading), tau_max_(ray_.time_bound(tau_max)),
-        child_(bvh.nodes_.empty() ? ended : 0), leaf_(leaf), fetch_(fetch), stack_(stack) {}
+  /// A walk that has ended (none set out yet), on `stack`.
+  Walk(const Bvh& bvh, Leaf leaf, Fetch fetch, Pending* stack) : bvh_(&bvh), leaf_(leaf), fetch_(fetch), stack_(stack) {}
+  /// Sets out on the walk along origin + τ dir for τ in [0, tau_max] (Bvh::walk), in place of
+  /// the one under way, if any.
+  void set_out(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Heading heading = Heading::any) {
+    ray_ = detail::BvhRay(origin - bvh_->center_, dir, pad, bvh_->extent_, heading);
+    tau_max_ = ray_.time_bound(tau_max);
+    top_ = 0;
+    child_ = bvh_->nodes_.empty() ? ended : 0;
+  }
   /// Searches the node or leaf next (false: the walk has ended, nothing is left).
   bool step() {
     if (child_ == ended) return false;
@@ -224,8 +235,8 @@ class Bvh::Walk {
 
   const Bvh* bvh_;
   detail::BvhRay ray_;
-  float tau_max_;  // τ'
-  int top_ = 0, child_;  // the node or leaf searched next
+  float tau_max_ = 0;  // τ'
+  int top_ = 0, child_ = ended;  // the node or leaf searched next
   Leaf leaf_;
   Fetch fetch_;
   Pending* stack_;
@@ -235,15 +246,17 @@ template <class Leaf, class Fetch>
 void Bvh::walk(const Vec3& origin, const Vec3& dir, double pad, double tau_max, Leaf leaf, Fetch fetch,
                Heading heading) const {
   Pending stack[stack_size];
-  Walk<Leaf, Fetch>(*this, origin, dir, pad, tau_max, leaf, fetch, stack, heading).run();
+  Walk<Leaf, Fetch> w(*this, leaf, fetch, stack);
+  w.set_out(origin, dir, pad, tau_max, heading);
+  w.run();
 }
 
-template <class W>
-void Bvh::walk_together(W* walks, int n) {
-  for (bool any = true; any;) {
-    any = false;
-    for (int i = 0; i < n; ++i) any |= walks[i].step();
-  }
+template <class W, class Next>
+void Bvh::walk_stream(W* walks, int n, Next next) {
+  assert(n <= 32);
+  for (std::uint32_t open = n < 32 ? (1u << n) - 1 : ~0u; open;)
+    for (int i = 0; i < n; ++i)
+      if (!walks[i].step() && (open >> i & 1) && !next(i)) open &= ~(1u << i);
 }
 
 }  // namespace billiards::dynamics

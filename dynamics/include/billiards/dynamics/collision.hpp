@@ -175,6 +175,14 @@ struct FlightHit : BasicHit<typename Flight::Scalar, Flight::State::dimension> {
   bool midpoint_inside = false;
 };
 
+/// The flight a lane of a stream of collision searches takes next (Table3::collision_stream,
+/// run_in_lockstep): from *state, up to t_end; none where state is null.
+template <class State>
+struct NextFlight {
+  const State* state = nullptr;
+  double t_end = never;
+};
+
 /// The first wall the flight from `s` leaves the region through, before `t_end`.
 /// Hit::found() is false when no wall is met: for a particle inside a bounded region and
 /// t_end = never, that means it has escaped.

@@ -335,6 +335,18 @@ void run_in_lockstep(const LockstepT& lockstep_table, const TableT& table, const
       refill(i);
     };
     for (int i = 0; i < lanes; ++i) refill(i);
+    // A mesh's walks as a stream: lane i's particle advanced to its hit, and the lane given its
+    // next flight (or the next particle's) as soon as the hit is found.
+    using Next = NextFlight<typename Flight::State>;
+    if constexpr (requires { lockstep_table.streams(); })
+      if (lockstep_table.streams())
+        return lockstep_table.collision_stream([&](int i, const FlightHit<Flight>* hit) -> Next {
+          if (hit && !runs[i]->advance_to(*hit)) finish(i);
+          while (runs[i] && runs[i]->done()) finish(i);  // (no record time after the start)
+          if (!runs[i] || stop.stopped() || error.failed()) return {};
+          return {&runs[i]->state(), runs[i]->horizon()};
+        });
+    // Else a batch of every lane's flight at a time.
     const typename Flight::State* states[lanes];
     double horizons[lanes];
     int lane_of[lanes];

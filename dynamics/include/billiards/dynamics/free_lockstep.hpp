@@ -57,8 +57,8 @@ Rays3 rays_of(const State3* const* states, const double* t_end, int n);
 /// A table whose straight flights can be searched in lock step: in 2-D segments, arcs and
 /// elliptic arcs without a grid (at most BasicTable::grid_threshold walls) and at most
 /// max_walls of each kind, in 3-D at most max_walls planes and max_walls spheres (no mesh),
-/// or a mesh, whose flights' BVH walks run together instead (Table3::collisions); ready for
-/// `collisions`.
+/// or a mesh, whose flights' BVH walks run together instead (Table3::collision_stream); ready
+/// for `collisions`.
 template <int Dim>
 class BasicFreeLockstepTable {
  public:
@@ -72,6 +72,13 @@ class BasicFreeLockstepTable {
   /// hits[i] = collision(table, flight, *states[i], t_end[i]) for 0 < n ≤ lanes: the same hits,
   /// bit for bit (where none is found, the hit's time and wall only).
   void collisions(const typename Flight::State* const* states, const double* t_end, int n, FlightHit<Flight>* hits) const;
+  /// Are the flights searched as a stream (a mesh's BVH walks, Table3::collision_stream: a lane
+  /// given its next flight as soon as its hit is found) rather than a batch at a time?
+  bool streams() const requires(Dim == 3) { return walks_together_; }
+  /// Table3::collision_stream in `lanes` lanes (where the table `streams`).
+  void collision_stream(Table3::NextFlights3 next) const requires(Dim == 3) {
+    table_->collision_stream(*flight_, lanes, next);
+  }
 
  private:
   const TableT* table_;

@@ -7,6 +7,7 @@
 #include "billiards/dynamics/bvh3.hpp"
 #include "billiards/dynamics/collision.hpp"
 #include "billiards/dynamics/forced_flight.hpp"
+#include "billiards/dynamics/function_ref.hpp"
 #include "billiards/dynamics/random.hpp"
 #include "billiards/dynamics/simd.hpp"
 #include "billiards/dynamics/table.hpp"
@@ -61,12 +62,19 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   /// t_end = never, found() == false means an escape.
   template <class Flight>
   FlightHit<Flight> collision(const Flight& flight, const typename Flight::State& s, double t_end = never) const;
-  /// The most flights `collisions` searches at once.
+  /// The most flights `collision_stream` searches at once.
   static constexpr int max_together = 16;
-  /// hits[i] = collision(flight, *states[i], t_end[i]) for i < n ≤ max_together, the BVH walks
-  /// of the flights run together (Bvh::walk_together, each its own walk): the same hits, bit
-  /// for bit, with the triangles' fetches from memory overlapped (a straight flight's
-  /// `collision` is this with n = 1).
+  /// What a lane of `collision_stream` is told of its flight's hit (null at its start) and
+  /// asked for its next flight.
+  using NextFlights3 = FunctionRef<NextFlight<State3>(int lane, const FlightHit<FreeFlight3>* hit)>;
+  /// The collisions of a stream of straight flights in `lanes` ≤ max_together lanes, whose BVH
+  /// walks run together (Bvh::walk_stream, each flight its own walk), so that the triangles'
+  /// fetches from memory overlap: lane i starts with the flight next(i, nullptr); as soon as a
+  /// flight's hit is found, next(i, &hit) gives the lane its next flight, and a lane given
+  /// none closes.  Each hit is collision(flight, *state, t_end)'s, bit for bit.
+  void collision_stream(const FreeFlight3& flight, int lanes, NextFlights3 next) const;
+  /// hits[i] = collision(flight, *states[i], t_end[i]) for i < n ≤ max_together: a stream of
+  /// one flight a lane (a straight flight's `collision` is this with n = 1).
   void collisions(const FreeFlight3& flight, const State3* const* states, const double* t_end, int n,
                   FlightHit<FreeFlight3>* hits) const;
   /// Is x in the closed region (the independent point-in-region test of geometry3)?
@@ -103,8 +111,7 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   /// Bvh::Heading::straight for a straight flight from x, where x is that near the box.
   Bvh::Heading straight_from(const Vec3& x) const;
   template <class Exit>
-  auto triangle_walk(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit,
-                     Bvh::Pending* stack, Bvh::Heading heading) const;
+  auto triangle_walk(Hit3& best, const double& t0, Exit exit, Bvh::Pending* stack) const;
   template <class Exit>
   void search_triangles(const Vec3& origin, const Vec3& dir, double pad, double t0, Hit3& best, Exit exit) const;
   template <class Helix, class Exit>
@@ -116,6 +123,7 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
   const geometry3::Region3& region_;
   Bvh bvh_;
   Vec3 lo_, hi_;
+  Vec3 straight_lo_, straight_hi_;  // the box grown by straight_reach of its size
   double slack_ = 0;
 };
 using Table3 = BasicTable<double, 3>;
