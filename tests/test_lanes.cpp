@@ -161,6 +161,15 @@ holes:
   return tables;
 }
 
+/// The end of the search from state k of states along orbits: the horizons cycle through none
+/// and some that end flights before their walls (in units of the table's size).
+template <class S>
+double horizon_end(const S& s, std::size_t k, double size) {
+  const double horizons[] = {dynamics::never, 1e-3, 0.7, 3};
+  const double h = horizons[k % 4];
+  return h == dynamics::never ? h : s.t + h * size;
+}
+
 /// Batches of every size 1..16 of states along the flight's orbits in the table and along
 /// straight orbits (on every wall, leaving it in every direction: a strong field's orbits from
 /// a fresh start may circle without meeting one), the states taken in turn, each state's horizon
@@ -172,8 +181,6 @@ void check_batches(const std::string& shape, const TableT& table, const Flight& 
   using S = typename Flight::State;
   using Straight = dynamics::BasicFreeFlight<double, S::dimension>;
   constexpr int lanes = LockstepT::lanes;
-  // Horizons, in units of the table's size.
-  const double horizons[] = {dynamics::never, 1e-3, 0.7, 3};
   auto states = states_along_orbits(table, Straight{}, 6, 2000);
   if constexpr (!std::is_same_v<Flight, Straight>) {
     const auto own = states_along_orbits(table, flight, 6, 2000);
@@ -191,8 +198,7 @@ void check_batches(const std::string& shape, const TableT& table, const Flight& 
       double t_end[lanes];
       for (int i = 0; i < n; ++i) {
         batch[i] = &states[next + std::size_t(i)];
-        const double h = horizons[(next + std::size_t(i)) % 4];
-        t_end[i] = h == dynamics::never ? h : batch[i]->t + h * size;
+        t_end[i] = horizon_end(*batch[i], next + std::size_t(i), size);
       }
       dynamics::FlightHit<Flight> hits[lanes];
       lockstep.collisions(batch, t_end, n, hits);
@@ -266,14 +272,12 @@ TEST_CASE("free lock step in 3-D: a stream of flights, each lane given its next 
   using dynamics::FlightHit;
   using dynamics::NextFlight;
   using dynamics::State3;
-  const double horizons[] = {dynamics::never, 1e-3, 0.7, 3};  // in units of the table's size
   for (const auto& t : mesh_tables())
     for (const int lanes : {dynamics::Table3::max_together, 5}) {
       const auto states = states_along_orbits(t->table, FreeFlight3{}, 6, 2000);
       const double size = (t->table.hi() - t->table.lo()).norm();
       std::vector<double> t_end(states.size());
-      for (std::size_t k = 0; k < states.size(); ++k)
-        t_end[k] = horizons[k % 4] == dynamics::never ? dynamics::never : states[k].t + horizons[k % 4] * size;
+      for (std::size_t k = 0; k < states.size(); ++k) t_end[k] = horizon_end(states[k], k, size);
       // The states handed out in turn to whichever lane asks; the hits as the lanes are told them.
       std::vector<FlightHit<FreeFlight3>> hits(states.size());
       std::vector<std::size_t> told;

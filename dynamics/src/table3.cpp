@@ -288,7 +288,7 @@ void Table3::collision_stream(const FreeFlight3& flight, int lanes, NextFlights3
   // A lane's flight: from *s (null before its first), its exit times, the best hit so far.
   struct Lane {
     const State3* s = nullptr;
-    double t0;
+    double t0;  // s->t, where the lane's walk reads it for every flight (s changes between them)
     std::optional<StraightScan3> scan;
     FlightHit<FreeFlight3> hit;
   };
