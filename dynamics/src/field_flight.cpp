@@ -267,7 +267,7 @@ template <class... W>
 struct TableScans<std::tuple<W...>> {
   std::tuple<std::vector<WallScan<W>>...> scans;
   TableScans(const Table& table, const FieldFlight::Model& m, const FieldState& s) {
-    table.for_each_kind([&]<class K>(const std::vector<K>& walls, int) {
+    table.for_each_kind([&]<class K>(const Walls<K>& walls, int) {
       for (const auto& w : walls) std::get<std::vector<WallScan<K>>>(scans).emplace_back(w, m, s);
     });
   }

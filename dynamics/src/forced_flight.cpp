@@ -173,7 +173,7 @@ auto DrivenScan<Flight>::first_hit(const BasicTable<Real>& table, const Real& t_
 template <class Flight>
 bool DrivenScan<Flight>::first_hit_without_windows(const BasicTable<Real>& table, BasicHit<Real>& best) const {
   const Real before = best.t;
-  table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+  table.for_each_kind([&]<class W>(const Walls<W>& walls, int kind) {
     if constexpr (!has_windows<W, decltype(quiver)>) detail::try_walls(walls, kind, *this, best);
   });
   return best.t < before;

@@ -29,7 +29,7 @@ lockstep::Drive drive_of(const PeriodicDriveFlight& flight) {
 
 /// Walls first … first + count − 1 of the segments, then the arcs, field by field, padded
 /// with the last to max_walls.
-lockstep::Walls walls_of(const std::vector<SegmentWall>& segments, const std::vector<ArcWall>& arcs, int first,
+lockstep::Walls walls_of(const Walls<SegmentWall>& segments, const Walls<ArcWall>& arcs, int first,
                          int count) {
   lockstep::Walls w{};
   const int n_segments = int(segments.size());

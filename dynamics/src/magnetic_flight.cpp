@@ -181,7 +181,7 @@ bool Gyration<Real, D>::scan_walls_without_closed_form(const BasicTable<Real>& t
                                                        FlightHit<BasicMagneticFlight<Real>>& hit) const
   requires(D == 2) {
   bool scanned = false;
-  table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+  table.for_each_kind([&]<class W>(const Walls<W>& walls, int kind) {
     if constexpr (!has_closed_form<Real, W>) {
       for (int i = 0, n = int(walls.size()); i < n; ++i)
         if (const Real t = exit_time(walls[i], hit.t); t < hit.t) hit.t = t, hit.wall = {kind, i}, scanned = true;

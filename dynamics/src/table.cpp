@@ -19,7 +19,7 @@ BasicTable<Real>::BasicTable(const geometry::Region2& region) {
   for (const geometry::Loop* loop : region.loops()) {
     for (std::size_t i = 0; i < loop->pieces.size(); ++i) {
       std::visit([&](const auto& piece) {
-        this->for_each_kind([&]<class W>(const std::vector<W>&, int kind) {
+        this->for_each_kind([&]<class W>(const Walls<W>&, int kind) {
           if constexpr (std::is_constructible_v<W, decltype(piece)>) {
             auto& walls = this->template mutable_walls<W>();
             const WallId id{kind, int(walls.size())};

@@ -52,7 +52,7 @@ Table3::BasicTable(const Region3& region, std::int64_t simd_target) : region_(re
   }
   bvh_ = Bvh(boxes, facings, 4 * slack, bvh_lanes::kernel_of(simd_target));
   // Store the triangles in the BVH's leaf order: a leaf's triangles are then contiguous.
-  std::vector<TriangleWall> sorted;
+  Walls<TriangleWall> sorted;
   sorted.reserve(triangles.size());
   for (int i : bvh_.order()) sorted.push_back(triangles[i]);
   triangles = std::move(sorted);
@@ -63,7 +63,7 @@ namespace {
 /// The earliest exit time `exit(wall, best.t)` of the walls of a kind other than the triangles
 /// (ask_triangles), kept in `best` where it is earlier.
 template <class W, class Exit>
-void ask_walls(const std::vector<W>& walls, int kind, Hit3& best, Exit exit) {
+void ask_walls(const Walls<W>& walls, int kind, Hit3& best, Exit exit) {
   for (int i = 0; i < int(walls.size()); ++i) {
     const double t = exit(walls[i], best.t);
     if (t < best.t) best.t = t, best.wall = {kind, i};
@@ -75,7 +75,7 @@ void ask_walls(const std::vector<W>& walls, int kind, Hit3& best, Exit exit) {
 /// mesh's order (`order`, the BVH's leaf order to the mesh's), so that the hit depends neither
 /// on the order in which a walk asks the leaves nor on the tree.
 template <class Exit>
-void ask_triangles(const std::vector<TriangleWall>& triangles, const std::vector<int>& order, int first, int count,
+void ask_triangles(const Walls<TriangleWall>& triangles, const std::vector<int>& order, int first, int count,
                    Hit3& best, Exit exit) {
   for (int i = first; i < first + count; ++i) {
     const double t = exit(triangles[i], best.t);
@@ -96,7 +96,7 @@ double tau_bound(double best_t, double t0) {
 /// around the triangles' walk.
 template <class Exit>
 void ask_walls_beside_triangles(const Table3& table, bool before, Hit3& best, Exit exit) {
-  table.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+  table.for_each_kind([&]<class W>(const Walls<W>& walls, int kind) {
     if constexpr (!std::is_same_v<W, TriangleWall>)
       if ((kind < wall_kind3::triangle) == before) ask_walls(walls, kind, best, exit);
   });
@@ -104,7 +104,7 @@ void ask_walls_beside_triangles(const Table3& table, bool before, Hit3& best, Ex
 
 /// Starts fetching what an exit test reads of a leaf's triangles [first, first + count): the
 /// first two cache lines of each (TriangleWall).
-void fetch_leaf(const std::vector<TriangleWall>& triangles, int first, int count) {
+void fetch_leaf(const Walls<TriangleWall>& triangles, int first, int count) {
   for (int i = first; i < first + count; ++i) {
     const char* t = reinterpret_cast<const char*>(&triangles[i]);
     __builtin_prefetch(t), __builtin_prefetch(t + 64);
@@ -252,7 +252,7 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
     ask_walls_beside_triangles(*this, false, best, exit);
   } else if constexpr (!std::is_same_v<Flight, PeriodicDriveFlight3>) {
     const auto exit = [&](const auto& w, double t) { return flight.exit_time(s, w, t); };
-    for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+    for_each_kind([&]<class W>(const Walls<W>& walls, int kind) {
       if constexpr (std::is_same_v<W, TriangleWall>)
         ask_triangles(walls, bvh_.order(), 0, int(walls.size()), best, exit);
       else ask_walls(walls, kind, best, exit);
@@ -264,7 +264,7 @@ FlightHit<Flight> Table3::collision(const Flight& flight, const typename Flight:
     if (by_windows) first_hit_in_windows(windowed, q, t_end, best);
     const auto exit = [&](const auto& w, double t) { return flight.exit_time(s, w, t); };
     // Wall by wall: every kind but the triangles (below), or those without windows.
-    for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+    for_each_kind([&]<class W>(const Walls<W>& walls, int kind) {
       if constexpr (!std::is_same_v<W, TriangleWall>)
         if (!by_windows || !Windowed<DriveQuiver3>::template along<W>::value) ask_walls(walls, kind, best, exit);
     });

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "billiards/dynamics/bvh_lanes.hpp"
+#include "billiards/dynamics/huge_pages.hpp"
 #include "billiards/geometry3/region3.hpp"
 
 #include <bit>
@@ -100,7 +101,7 @@ class Bvh {
     for (std::size_t line = 0; line < sizeof(Node); line += 64) __builtin_prefetch(reinterpret_cast<const char*>(&n) + line);
   }
 
-  std::vector<Node> nodes_;
+  HugePageVector<Node> nodes_;  // (read at random: huge_pages.hpp)
   Vec3 center_ = Vec3::Zero();  // the frame of the stored boxes
   double extent_ = 0;  // the largest |coordinate| of a stored non-empty box
   std::vector<int> order_;

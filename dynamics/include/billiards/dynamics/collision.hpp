@@ -59,7 +59,7 @@ inline void try_wall(const BasicTable<typename Flight::Scalar>& table, const Fli
 /// Tries the walls of one kind (the best hit so far kept in locals, so that the loop does not
 /// reload it from memory after each wall).
 template <class Real, class Scan, class Wall>
-inline void try_walls(const std::vector<Wall>& walls, int kind, const Scan& scan, BasicHit<Real>& best) {
+inline void try_walls(const Walls<Wall>& walls, int kind, const Scan& scan, BasicHit<Real>& best) {
   const Wall* w = walls.data();
   const int n = int(walls.size());
   Real best_t = best.t;

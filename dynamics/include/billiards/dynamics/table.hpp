@@ -51,9 +51,9 @@ class BasicTable<Real, 2> : public WallSet<WallKinds<Real>> {
 
   explicit BasicTable(const geometry::Region2& region);
 
-  const std::vector<BasicSegmentWall<Real>>& segments() const { return Base::template walls<BasicSegmentWall<Real>>(); }
-  const std::vector<BasicArcWall<Real>>& arcs() const { return Base::template walls<BasicArcWall<Real>>(); }
-  const std::vector<BasicEllipticArcWall<Real>>& elliptic_arcs() const { return Base::template walls<BasicEllipticArcWall<Real>>(); }
+  const Walls<BasicSegmentWall<Real>>& segments() const { return Base::template walls<BasicSegmentWall<Real>>(); }
+  const Walls<BasicArcWall<Real>>& arcs() const { return Base::template walls<BasicArcWall<Real>>(); }
+  const Walls<BasicEllipticArcWall<Real>>& elliptic_arcs() const { return Base::template walls<BasicEllipticArcWall<Real>>(); }
   /// The hit point p of a flight with velocity v moved onto the wall (see walls.hpp), and the
   /// region's outward unit normal there.
   std::pair<V, V> contact(const WallId& wall, const V& p, const V& v) const {

@@ -79,10 +79,10 @@ class BasicTable<double, 3> : public WallSet<WallKinds3> {
                   FlightHit<FreeFlight3>* hits) const;
   /// Is x in the closed region (the independent point-in-region test of geometry3)?
   bool contains(const Vec3& x) const { return geometry3::contains(region_, x); }
-  const std::vector<PlaneWall>& planes() const { return walls<PlaneWall>(); }
+  const Walls<PlaneWall>& planes() const { return walls<PlaneWall>(); }
   /// (In the BVH's leaf order; the mesh's order is piece_of's.)
-  const std::vector<TriangleWall>& triangles() const { return walls<TriangleWall>(); }
-  const std::vector<SphereWall>& spheres() const { return walls<SphereWall>(); }
+  const Walls<TriangleWall>& triangles() const { return walls<TriangleWall>(); }
+  const Walls<SphereWall>& spheres() const { return walls<SphereWall>(); }
   std::pair<Vec3, Vec3> contact(const WallId& wall, const Vec3& p) const {
     return visit(wall, [&](const auto& w) { return w.contact(p); });
   }

@@ -1,10 +1,12 @@
 // The walls of a table, kept by kind in contiguous storage (one std::vector per wall type),
 // and the loops over them every algorithm goes through: `for_each_kind` (all walls, kind by
 // kind: one loop per kind, no dispatch per wall), `any_kind` (the same, stopping early) and
-// `visit` (one wall by its WallId).  2-D and 3-D tables (table.hpp, table3.hpp) both derive
+// `visit` (one wall by its WallId).  The storage is on huge pages once large (a mesh's
+// triangles: huge_pages.hpp).  2-D and 3-D tables (table.hpp, table3.hpp) both derive
 // from it, with their own list of kinds (WallKinds, WallKinds3).
 #pragma once
 
+#include "billiards/dynamics/huge_pages.hpp"
 #include "billiards/dynamics/state.hpp"
 
 #include <array>
@@ -14,6 +16,10 @@
 #include <vector>
 
 namespace billiards::dynamics {
+
+/// A table's walls of one kind, contiguous (on huge pages once large).
+template <class Wall>
+using Walls = HugePageVector<Wall>;
 
 template <class Kinds>
 class WallSet;
@@ -28,7 +34,7 @@ class WallSet<std::tuple<W...>> {
 
   /// The walls of one kind.
   template <class Wall>
-  const std::vector<Wall>& walls() const { return std::get<std::vector<Wall>>(walls_); }
+  const Walls<Wall>& walls() const { return std::get<Walls<Wall>>(walls_); }
   std::size_t wall_count() const {
     return std::apply([](const auto&... v) { return (v.size() + ... + std::size_t(0)); }, walls_);
   }
@@ -40,7 +46,7 @@ class WallSet<std::tuple<W...>> {
     });
     return ids;
   }
-  /// fn(walls, kind) for each kind's vector of walls, in the order of WallId::kind.
+  /// fn(walls, kind) for each kind's walls, in the order of WallId::kind.
   template <class Fn>
   void for_each_kind(Fn&& fn) const {
     [&]<std::size_t... k>(std::index_sequence<k...>) {
@@ -62,7 +68,7 @@ class WallSet<std::tuple<W...>> {
 
  protected:
   template <class Wall>
-  std::vector<Wall>& mutable_walls() { return std::get<std::vector<Wall>>(walls_); }
+  Walls<Wall>& mutable_walls() { return std::get<Walls<Wall>>(walls_); }
 
  private:
   template <std::size_t k, class Fn>
@@ -70,7 +76,7 @@ class WallSet<std::tuple<W...>> {
     if constexpr (k + 1 == kind_count) return fn(std::get<k>(walls_)[id.index]);
     else return id.kind == int(k) ? fn(std::get<k>(walls_)[id.index]) : visit_kind<k + 1>(id, fn);
   }
-  std::tuple<std::vector<W>...> walls_;
+  std::tuple<Walls<W>...> walls_;
 };
 
 /// The walls of the kinds a search selects (`Select<W>::value`), numbered 0, 1, … kind by kind in
@@ -85,7 +91,7 @@ class NumberedWalls {
   explicit NumberedWalls(const Set& set) : set_(set) {
     static_assert(has_selected_after<0>(), "NumberedWalls selects no kind");
     int n = 0;
-    set.for_each_kind([&]<class W>(const std::vector<W>& walls, int kind) {
+    set.for_each_kind([&]<class W>(const Walls<W>& walls, int kind) {
       first_[kind] = n;
       if constexpr (Select<W>::value) n += int(walls.size());
     });
