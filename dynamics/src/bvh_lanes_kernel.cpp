@@ -30,8 +30,16 @@ struct VectorLanes {
   static Num convert(const std::int8_t* p) {
     return hn::ConvertTo(D(), hn::PromoteTo(hn::Rebind<std::int32_t, D>(), hn::LoadU(hn::Rebind<std::int8_t, D>(), p)));
   }
+  // x86's max and min of (b, a) are b where b is beyond a, else a, a NaN b included: the
+  // rule of later and earlier in one instruction.  (Highway leaves Max's and Min's NaN open
+  // on other targets, which keep the comparison.)
+#if HWY_TARGET == HWY_AVX3 || HWY_TARGET == HWY_AVX2 || HWY_TARGET == HWY_SSE4
+  static Num later(Num a, Num b) { return hn::Max(b, a); }
+  static Num earlier(Num a, Num b) { return hn::Min(b, a); }
+#else
   static Num later(Num a, Num b) { return hn::IfThenElse(hn::Lt(a, b), b, a); }
   static Num earlier(Num a, Num b) { return hn::IfThenElse(hn::Lt(b, a), b, a); }
+#endif
   static void store(Num v, float* p) { hn::StoreU(v, D(), p); }
   static unsigned entered(Num in, Num out) {
     std::uint8_t bits[8] = {};
