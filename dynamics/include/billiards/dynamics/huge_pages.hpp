@@ -2,8 +2,8 @@
 // nodes (tens of megabytes for 10⁵ triangles, thousands of 4 KiB pages, more than the
 // processor's address-translation caches hold).  An allocation of 2 MiB or more is mapped on
 // its own, aligned to 2 MiB, and marked for Linux's transparent huge pages before it is first
-// touched (`madvise` mode, Debian's default), so that it spans one translation entry every
-// 2 MiB; where huge pages are off the mark is ignored.  Smaller allocations, and systems
+// touched (the kernel's `madvise` mode needs the mark, `always` does without), so that it
+// spans one translation entry every 2 MiB; where huge pages are off the mark is moot.  Smaller allocations, and systems
 // without madvise, take plain operator new.
 #pragma once
 
