@@ -60,6 +60,10 @@ struct Lanes {
  private:
   static Num pick(Truth m, Num a, Num b) { return select(m, a, b); }
   static Truth pick(Truth m, Truth a, Truth b) { return select_truth(m, a, b); }
+  template <class Contact>  // (ContactLanes, field by field)
+  static Contact pick(Truth m, const Contact& a, const Contact& b) {
+    return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.nx, b.nx), select(m, a.ny, b.ny)};
+  }
 };
 
 #include "billiards/dynamics/straight_exit-inl.hpp"

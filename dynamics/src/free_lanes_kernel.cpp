@@ -62,7 +62,64 @@ struct Best {
     hn::Store(index, di, hits.index + first);
     hn::Store(hn::VecFromMask(di, hn::RebindMask(di, lanes.undecided)), di, hits.handed_back + first);
   }
+  /// Where the wall of each lane's hit is of kind k.
+  Truth of_kind(int k) const { return hn::RebindMask(D(), kind == hn::Set(DI(), k)); }
 };
+
+/// column[i] in each lane (i < count; a lane's i beyond: any entry): the table lookup of the
+/// L entries from the one that holds i.
+Num lookup(const double* column, int count, Index i) {
+  const D d;
+  const auto at = hn::IndicesFromVec(d, hn::And(i, hn::Set(DI(), L - 1)));
+  Num r = hn::TableLookupLanes(hn::Load(d, column), at);
+  for (int first = L; first < count; first += L)
+    r = hn::IfThenElse(hn::RebindMask(d, hn::Set(DI(), first - 1) < i), hn::TableLookupLanes(hn::Load(d, column + first), at), r);
+  return r;
+}
+
+/// Does the kernel make the hits' contacts (make_contacts)?  With eight lanes (AVX-512) the
+/// clover, the stadium and the Sinai table run at 1.06–1.12× the rate of leaving them to the
+/// scalar code, the mushroom at 0.97×; with four (AVX2) at 0.93–1.05× (BENCHMARKS.md, free
+/// flights): an arc's contact computes both its branches in every lane.
+constexpr bool contacts_in_lanes = L >= 8;
+
+/// The flight's position at each lane's hit and the contact there, as the scalar code makes
+/// them (FreeFlight::advance, then the wall's `contact`: straight_exit-inl.hpp's
+/// segment_contact and arc_contact), where a segment or an arc was hit and the lane was not
+/// handed back (an elliptic arc's hit is left to the scalar code).
+void make_contacts(const Walls& walls, const RayLanes<Num>& s, const Best& best, const Lanes& lanes, int first,
+                   Hits& hits) {
+  const D d;
+  const Num tau = best.t - s.t, x = s.x + s.vx * tau, y = s.y + s.vy * tau;
+  const Truth on_segment = hn::AndNot(lanes.undecided, best.of_kind(0));
+  const Truth on_arc = hn::AndNot(lanes.undecided, best.of_kind(1));
+  const Num zero = hn::Zero(d);
+  const ContactColumns& w = walls.contacts;
+  ContactLanes<Num> c{zero, zero, zero, zero};
+  auto keep = [&](Truth where, const ContactLanes<Num>& k) {
+    c = {hn::IfThenElse(where, k.x, c.x), hn::IfThenElse(where, k.y, c.y), hn::IfThenElse(where, k.nx, c.nx),
+         hn::IfThenElse(where, k.ny, c.ny)};
+  };
+  if (!hn::AllFalse(d, on_segment)) {
+    auto field = [&](const double* column) { return lookup(column, walls.segment_count, best.index); };
+    const SegmentLanes<Num> g{field(w.ax), field(w.ay), field(w.nx), field(w.ny), field(w.dir_x), field(w.dir_y), zero, zero};
+    keep(on_segment, segment_contact<Lanes>(g, field(w.bx), field(w.by), x, y));
+  }
+  if (!hn::AllFalse(d, on_arc)) {
+    auto field = [&](const double* column) { return lookup(column, walls.arc_count, best.index); };
+    const DI di;
+    const Index i = hn::IfThenElseZero(hn::RebindMask(di, on_arc), best.index);  // (no shift by −1)
+    const Truth focusing = hn::RebindMask(d, hn::TestBit(hn::Set(di, std::int64_t(w.focusing)), hn::Set(di, 1) << i));
+    const ArcLanes<Num, Truth> a{field(w.cx), field(w.cy), field(w.r), field(w.r2), zero, zero, zero, zero, zero, zero,
+                                 focusing,    focusing,    focusing};
+    keep(on_arc, arc_contact(Lanes{}, a, field(w.slack), x, y, s.vx, s.vy));
+  }
+  const DI di;
+  hn::Store(hn::VecFromMask(di, hn::RebindMask(di, hn::Or(on_segment, on_arc))), di, hits.made + first);
+  hn::Store(x, d, hits.x + first), hn::Store(y, d, hits.y + first);
+  hn::Store(c.x, d, hits.point_x + first), hn::Store(c.y, d, hits.point_y + first);
+  hn::Store(c.nx, d, hits.normal_x + first), hn::Store(c.ny, d, hits.normal_y + first);
+}
 
 /// The first hits of the L flights from lane `first`.
 void first_hits_of(const Walls& walls, const Rays& rays, int first, Hits& hits) {
@@ -80,6 +137,8 @@ void first_hits_of(const Walls& walls, const Rays& rays, int first, Hits& hits) 
     best.keep(straight_exit_time(lanes, mapped_ray<Lanes>(s, lanes_of(e)), lanes_of(e.unit), t_end), 2, i);
   }
   best.store(lanes, first, hits);
+  if constexpr (contacts_in_lanes) make_contacts(walls, s, best, lanes, first, hits);
+  else hn::Store(hn::Zero(DI()), DI(), hits.made + first);
 }
 
 /// The same in 3-D: the planes, then the spheres (Table3::collision's order of kinds).

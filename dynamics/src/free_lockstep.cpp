@@ -36,13 +36,21 @@ free_lanes::Walls free_lanes::walls_of(const Table& table) {
   const auto& segments = table.segments();
   const auto& arcs = table.arcs();
   Walls walls;
+  auto& c = walls.contacts;
   walls.segment_count = int(segments.size());
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const auto g = segment_lanes(segments[i]);
     walls.segments[i] = {g.ax, g.ay, g.nx, g.ny, g.dir_x, g.dir_y, g.slack, g.span_tol};
+    c.ax[i] = g.ax, c.ay[i] = g.ay, c.nx[i] = g.nx, c.ny[i] = g.ny, c.dir_x[i] = g.dir_x, c.dir_y[i] = g.dir_y;
+    c.bx[i] = segments[i].b.x(), c.by[i] = segments[i].b.y();
   }
   walls.arc_count = int(arcs.size());
-  for (std::size_t i = 0; i < arcs.size(); ++i) walls.arcs[i] = arc_of(arcs[i]);
+  for (std::size_t i = 0; i < arcs.size(); ++i) {
+    const ArcWall& a = arcs[i];
+    walls.arcs[i] = arc_of(a);
+    c.cx[i] = a.center.x(), c.cy[i] = a.center.y(), c.r[i] = a.radius, c.r2[i] = a.radius2, c.slack[i] = a.slack;
+    c.focusing |= std::uint64_t(a.focusing) << i;
+  }
   if (!ellipses_fit(table)) return walls;
   const auto& ellipses = table.elliptic_arcs();
   walls.ellipse_count = int(ellipses.size());
@@ -141,11 +149,19 @@ void BasicFreeLockstepTable<Dim>::collisions(const typename Flight::State* const
       hit = collision(*table_, *flight_, s, t_end[i]);
       continue;
     }
-    // As `collision` makes the hit.
+    // As `collision` makes the hit (the kernel made it where `made`).
     hit.t = out.t[i];
     hit.wall = out.kind[i] < 0 ? WallId{} : WallId{int(out.kind[i]), int(out.index[i])};
     hit.midpoint_inside = false;
     if (!hit.found()) continue;
+    if constexpr (Dim == 2) {
+      if (out.made[i]) {
+        hit.state = s;
+        hit.state.x = Vec2(out.x[i], out.y[i]), hit.state.t = hit.t;
+        hit.point = Vec2(out.point_x[i], out.point_y[i]), hit.normal = Vec2(out.normal_x[i], out.normal_y[i]);
+        continue;
+      }
+    }
     hit.state = flight_->advance(s, hit.t);
     std::tie(hit.point, hit.normal) = contact_of(*table_, hit);
   }

@@ -21,6 +21,14 @@ struct Arc {
   double cx, cy, r, r2, near, span_tol, from_x, from_y, to_x, to_y;
   bool focusing, full, half;
 };
+/// What the contacts of the segments and arcs read (segment_contact, arc_contact), field by
+/// field (entry i: wall i of the kind), for the kernels' table lookups by each lane's wall.
+struct alignas(64) ContactColumns {
+  double ax[max_walls], ay[max_walls], nx[max_walls], ny[max_walls], dir_x[max_walls], dir_y[max_walls],
+      bx[max_walls], by[max_walls];                                                      // segments
+  double cx[max_walls], cy[max_walls], r[max_walls], r2[max_walls], slack[max_walls];  // arcs
+  std::uint64_t focusing = 0;                                                           // bit i: arc i
+};
 /// An elliptic arc wall (BasicEllipticArcWall's fields): the map u = L (x − c) and the unit
 /// arc it takes the wall to.
 struct Ellipse {
@@ -33,6 +41,7 @@ struct Walls {
   Arc arcs[max_walls];
   Ellipse ellipses[max_walls];
   int segment_count = 0, arc_count = 0, ellipse_count = 0;
+  ContactColumns contacts{};
 };
 
 /// A face of a convex polyhedron (PlaneWall's fields).
@@ -63,11 +72,15 @@ struct alignas(64) Rays3 {
 /// What the search found, lane by lane: the first wall's time (t_end: none), kind
 /// (wall_kind::segment, arc or elliptic_arc; in 3-D wall_kind3::plane or sphere; −1: none) and
 /// index; or `handed_back`: a circle's or a sphere's discriminant the filter could not sign,
-/// for the scalar search to decide exactly.
+/// for the scalar search to decide exactly.  Where `made` (2-D segments and arcs, by the
+/// kernels of eight lanes), the hit's position (x, y) and the wall's contact point and normal
+/// there, as `collision` makes them.
 struct alignas(64) Hits {
   double t[lanes];
   std::int64_t kind[lanes], index[lanes];
   std::int64_t handed_back[lanes];  // −1 (true) or 0
+  std::int64_t made[lanes];         // −1 (true) or 0
+  double x[lanes], y[lanes], point_x[lanes], point_y[lanes], normal_x[lanes], normal_y[lanes];
 };
 
 /// The kernels, as compiled for one SIMD target: 2-D and 3-D.
