@@ -25,6 +25,10 @@ struct Lanes {
   static Num splat(double x) { return hn::Set(D(), x); }
   static Num never() { return splat(std::numeric_limits<double>::infinity()); }
   static Num select(Truth m, Num a, Num b) { return hn::IfThenElse(m, a, b); }
+  template <class Contact>  // (ContactLanes, field by field)
+  static Contact select(Truth m, const Contact& a, const Contact& b) {
+    return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.nx, b.nx), select(m, a.ny, b.ny)};
+  }
   static Truth select_truth(Truth m, Truth a, Truth b) { return hn::Or(hn::And(m, a), hn::AndNot(m, b)); }
   static Truth splat_truth(bool a) { return hn::FirstN(D(), a ? L : 0); }
   static bool none(Truth m) { return hn::AllFalse(D(), m); }
@@ -60,9 +64,9 @@ struct Lanes {
  private:
   static Num pick(Truth m, Num a, Num b) { return select(m, a, b); }
   static Truth pick(Truth m, Truth a, Truth b) { return select_truth(m, a, b); }
-  template <class Contact>  // (ContactLanes, field by field)
+  template <class Contact>
   static Contact pick(Truth m, const Contact& a, const Contact& b) {
-    return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.nx, b.nx), select(m, a.ny, b.ny)};
+    return select(m, a, b);
   }
 };
 

@@ -96,14 +96,10 @@ void make_contacts(const Walls& walls, const RayLanes<Num>& s, const Best& best,
   const Num zero = hn::Zero(d);
   const ContactColumns& w = walls.contacts;
   ContactLanes<Num> c{zero, zero, zero, zero};
-  auto keep = [&](Truth where, const ContactLanes<Num>& k) {
-    c = {hn::IfThenElse(where, k.x, c.x), hn::IfThenElse(where, k.y, c.y), hn::IfThenElse(where, k.nx, c.nx),
-         hn::IfThenElse(where, k.ny, c.ny)};
-  };
   if (!hn::AllFalse(d, on_segment)) {
     auto field = [&](const double* column) { return lookup(column, walls.segment_count, best.index); };
     const SegmentLanes<Num> g{field(w.ax), field(w.ay), field(w.nx), field(w.ny), field(w.dir_x), field(w.dir_y), zero, zero};
-    keep(on_segment, segment_contact<Lanes>(g, field(w.bx), field(w.by), x, y));
+    c = Lanes::select(on_segment, segment_contact<Lanes>(g, field(w.bx), field(w.by), x, y), c);
   }
   if (!hn::AllFalse(d, on_arc)) {
     auto field = [&](const double* column) { return lookup(column, walls.arc_count, best.index); };
@@ -112,7 +108,7 @@ void make_contacts(const Walls& walls, const RayLanes<Num>& s, const Best& best,
     const Truth focusing = hn::RebindMask(d, hn::TestBit(hn::Set(di, std::int64_t(w.focusing)), hn::Set(di, 1) << i));
     const ArcLanes<Num, Truth> a{field(w.cx), field(w.cy), field(w.r), field(w.r2), zero, zero, zero, zero, zero, zero,
                                  focusing,    focusing,    focusing};
-    keep(on_arc, arc_contact(Lanes{}, a, field(w.slack), x, y, s.vx, s.vy));
+    c = Lanes::select(on_arc, arc_contact(Lanes{}, a, field(w.slack), x, y, s.vx, s.vy), c);
   }
   const DI di;
   hn::Store(hn::VecFromMask(di, hn::RebindMask(di, hn::Or(on_segment, on_arc))), di, hits.made + first);
