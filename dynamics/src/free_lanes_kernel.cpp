@@ -16,6 +16,7 @@
 #include <hwy/highway.h>
 
 #include "billiards/dynamics/free_lanes.hpp"
+#include "billiards/dynamics/phase_constants.hpp"
 #include "billiards/dynamics/simd.hpp"
 
 #include <cstdint>
@@ -31,6 +32,8 @@ namespace {
 
 #include "double_lanes-inl.hpp"
 #include "billiards/dynamics/straight_exit3-inl.hpp"
+#include "billiards/dynamics/drive_phase-inl.hpp"  // (the run's clock)
+#include "billiards/dynamics/bounce-inl.hpp"
 
 /// A plane or a sphere, the same in every lane.
 PlaneLanes<Num> lanes_of(const Plane& p) {
@@ -77,7 +80,7 @@ Num lookup(const double* column, int count, Index i) {
   return r;
 }
 
-/// Does the kernel make the hits' contacts (make_contacts)?  With eight lanes (AVX-512) the
+/// Does the kernel make the hits' contacts (contacts_of)?  With eight lanes (AVX-512) the
 /// clover, the stadium and the Sinai table run at 1.06–1.12× the rate of leaving them to the
 /// scalar code, the mushroom at 0.97×; with four (AVX2) at 0.93–1.05× (BENCHMARKS.md, free
 /// flights): an arc's contact computes both its branches in every lane.
@@ -85,10 +88,23 @@ constexpr bool contacts_in_lanes = L >= 8;
 
 /// The flight's position at each lane's hit and the contact there, as the scalar code makes
 /// them (FreeFlight::advance, then the wall's `contact`: straight_exit-inl.hpp's
-/// segment_contact and arc_contact), where a segment or an arc was hit and the lane was not
-/// handed back (an elliptic arc's hit is left to the scalar code).
-void make_contacts(const Walls& walls, const RayLanes<Num>& s, const Best& best, const Lanes& lanes, int first,
-                   Hits& hits) {
+/// segment_contact and arc_contact), `made` where a segment or an arc was hit and the lane was
+/// not handed back (an elliptic arc's hit is left to the scalar code).
+struct Contacts {
+  Truth made;
+  Num x, y;
+  ContactLanes<Num> at;
+  /// Into the hits from lane `first`.
+  void store(int first, Hits& hits) const {
+    const D d;
+    const DI di;
+    hn::Store(hn::VecFromMask(di, hn::RebindMask(di, made)), di, hits.made + first);
+    hn::Store(x, d, hits.x + first), hn::Store(y, d, hits.y + first);
+    hn::Store(at.x, d, hits.point_x + first), hn::Store(at.y, d, hits.point_y + first);
+    hn::Store(at.nx, d, hits.normal_x + first), hn::Store(at.ny, d, hits.normal_y + first);
+  }
+};
+Contacts contacts_of(const Walls& walls, const RayLanes<Num>& s, const Best& best, const Lanes& lanes) {
   const D d;
   const Num tau = best.t - s.t, x = s.x + s.vx * tau, y = s.y + s.vy * tau;
   const Truth on_segment = hn::AndNot(lanes.undecided, best.of_kind(0));
@@ -110,20 +126,18 @@ void make_contacts(const Walls& walls, const RayLanes<Num>& s, const Best& best,
                                  focusing,    focusing,    focusing};
     c = Lanes::select(on_arc, arc_contact(Lanes{}, a, field(w.slack), x, y, s.vx, s.vy), c);
   }
-  const DI di;
-  hn::Store(hn::VecFromMask(di, hn::RebindMask(di, hn::Or(on_segment, on_arc))), di, hits.made + first);
-  hn::Store(x, d, hits.x + first), hn::Store(y, d, hits.y + first);
-  hn::Store(c.x, d, hits.point_x + first), hn::Store(c.y, d, hits.point_y + first);
-  hn::Store(c.nx, d, hits.normal_x + first), hn::Store(c.ny, d, hits.normal_y + first);
+  return {hn::Or(on_segment, on_arc), x, y, c};
 }
 
-/// The first hits of the L flights from lane `first`.
-void first_hits_of(const Walls& walls, const Rays& rays, int first, Hits& hits) {
+/// The L flights from lane `first`.
+RayLanes<Num> rays_at(const Rays& rays, int first) {
   const D d;
-  Lanes lanes;
-  const RayLanes<Num> s{hn::Load(d, rays.x + first), hn::Load(d, rays.y + first), hn::Load(d, rays.vx + first),
-                        hn::Load(d, rays.vy + first), hn::Load(d, rays.t + first), hn::Load(d, rays.vv + first)};
-  const Num t_end = hn::Load(d, rays.t_end + first);
+  return {hn::Load(d, rays.x + first),  hn::Load(d, rays.y + first), hn::Load(d, rays.vx + first),
+          hn::Load(d, rays.vy + first), hn::Load(d, rays.t + first), hn::Load(d, rays.vv + first)};
+}
+
+/// The first walls the flights s meet before t_end, in the scalar search's order of walls.
+Best search(const Walls& walls, Lanes& lanes, const RayLanes<Num>& s, Num t_end) {
   Best best(t_end);
   for (int i = 0; i < walls.segment_count; ++i)
     best.keep(straight_exit_time(lanes, s, lanes_of(walls.segments[i]), t_end), 0, i);
@@ -132,9 +146,63 @@ void first_hits_of(const Walls& walls, const Rays& rays, int first, Hits& hits) 
     const Ellipse& e = walls.ellipses[i];
     best.keep(straight_exit_time(lanes, mapped_ray<Lanes>(s, lanes_of(e)), lanes_of(e.unit), t_end), 2, i);
   }
+  return best;
+}
+
+/// The first hits of the L flights from lane `first`.
+void first_hits_of(const Walls& walls, const Rays& rays, int first, Hits& hits) {
+  Lanes lanes;
+  const RayLanes<Num> s = rays_at(rays, first);
+  const Best best = search(walls, lanes, s, hn::Load(D(), rays.t_end + first));
   best.store(lanes, first, hits);
-  if constexpr (contacts_in_lanes) make_contacts(walls, s, best, lanes, first, hits);
+  if constexpr (contacts_in_lanes) contacts_of(walls, s, best, lanes).store(first, hits);
   else hn::Store(hn::Zero(DI()), DI(), hits.made + first);
+}
+
+/// The lanes where m holds, as bits (bit i: lane i).
+std::uint32_t lanes_of_mask(Truth m) {
+  std::uint8_t bytes[(L + 7) / 8];
+  hn::StoreMaskBits(D(), m, bytes);
+  std::uint32_t bits = 0;
+  for (int b = 0; b < (L + 7) / 8; ++b) bits |= std::uint32_t(bytes[b]) << (8 * b);
+  return bits & ((1u << L) - 1);
+}
+
+/// `propagate` for the L particles from lane `first`: the lanes left to the scalar code.  The
+/// bounce is collision.hpp's (bounce-inl.hpp's, with k = 2(v·n) and |v|² summed as Eigen sums
+/// a 2-vector's), the clock's add is state.hpp's (drive_phase-inl.hpp's), each of the same
+/// operations in the same order: so a particle's bounces in the lanes are the scalar code's,
+/// bit for bit.  The contacts are made on every target here: a lane that leaves costs more
+/// than an arc's two branches.
+std::uint32_t propagate_of(const Walls& walls, Particles& p, int first, Hits& hits) {
+  const D d;
+  Lanes lanes;
+  Rays& r = p.rays;
+  const RayLanes<Num> s = rays_at(r, first);
+  const Best best = search(walls, lanes, s, hn::Load(d, r.t_end + first));
+  best.store(lanes, first, hits);
+  const Contacts c = contacts_of(walls, s, best, lanes);
+  c.store(first, hits);
+  const Unevaluated<Num> clock{hn::Load(d, p.clock_hi + first), hn::Load(d, p.clock_lo + first)};
+  const Truth before_record = best.t < clock_until<Lanes>(clock, hn::Load(d, p.record_at + first));
+  const Truth stays = hn::And(hn::And(c.made, best.t != hn::Zero(d)), before_record);
+  const std::uint32_t left = lanes_of_mask(hn::Not(stays)) << first;
+  if (hn::AllFalse(d, stays)) return left;
+  Num v[2] = {s.vx, s.vy};
+  const Num n[2] = {c.at.nx, c.at.ny};
+  reflect_in_place<Lanes, 2>(v, n, Lanes::splat(2) * (s.vx * c.at.nx + s.vy * c.at.ny));
+  const Num v2 = hn::Load(d, p.v2 + first);
+  restore_speed_in_place<Lanes, 2>(v, v2, v[0] * v[0] + v[1] * v[1], Lanes::splat(speed_band<double>));
+  const Unevaluated<Num> after = clock_after_flight(clock, best.t);
+  auto keep = [&](double* column, Num value) {
+    hn::Store(hn::IfThenElse(stays, value, hn::Load(d, column + first)), d, column + first);
+  };
+  keep(r.x, c.at.x), keep(r.y, c.at.y), keep(r.vx, v[0]), keep(r.vy, v[1]), keep(r.vv, v[0] * v[0] + v[1] * v[1]);
+  keep(p.clock_hi, after.hi), keep(p.clock_lo, after.lo);
+  const DI di;
+  const auto bounces = hn::Load(di, p.bounces + first);
+  hn::Store(hn::IfThenElse(hn::RebindMask(di, stays), bounces + hn::Set(di, 1), bounces), di, p.bounces + first);
+  return left;
 }
 
 /// The same in 3-D: the planes, then the spheres (Table3::collision's order of kinds).
@@ -160,6 +228,11 @@ void first_hits(const Walls& walls, const Rays& rays, Hits& hits) {
 void first_hits3(const Walls3& walls, const Rays3& rays, Hits& hits) {
   for (int first = 0; first < lanes; first += L) first_hits3_of(walls, rays, first, hits);
 }
+std::uint32_t propagate(const Walls& walls, Particles& particles, Hits& hits) {
+  std::uint32_t left = 0;
+  for (int first = 0; first < lanes; first += L) left |= propagate_of(walls, particles, first, hits);
+  return left;
+}
 
 }  // namespace billiards::dynamics::free_lanes::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
@@ -169,6 +242,7 @@ namespace billiards::dynamics::free_lanes {
 
 Kernel kernel_of(std::int64_t target) { BILLIARDS_KERNEL_OF(target, first_hits) }
 Kernel3 kernel3_of(std::int64_t target) { BILLIARDS_KERNEL_OF(target, first_hits3) }
+Propagator propagator_of(std::int64_t target) { BILLIARDS_KERNEL_OF(target, propagate) }
 
 }  // namespace billiards::dynamics::free_lanes
 #endif

@@ -16,6 +16,11 @@ free_lanes::Kernel3 free_lanes::chosen_kernel<3>() {
   static const Kernel3 k = kernel3_of(simd::chosen_target());
   return k;
 }
+template <>
+free_lanes::Propagator free_lanes::chosen_propagator<2>() {
+  static const Propagator p = propagator_of(simd::chosen_target());
+  return p;
+}
 
 bool free_lanes::fits(const Table& table) {
   return table.segments().size() <= std::size_t(max_walls) && table.arcs().size() <= std::size_t(max_walls);
@@ -115,6 +120,27 @@ free_lanes::Rays3 free_lanes::rays_of(const State3* const* states, const double*
   return in;
 }
 
+void free_lanes::load(Particles& p, int i, const State& s, const Clock& clock, double v2, double record_at) {
+  Rays& r = p.rays;
+  r.x[i] = s.x.x(), r.y[i] = s.x.y(), r.vx[i] = s.v.x(), r.vy[i] = s.v.y();
+  r.t[i] = s.t, r.vv[i] = s.v.squaredNorm(), r.t_end[i] = never;
+  p.clock_hi[i] = clock.hi, p.clock_lo[i] = clock.lo, p.v2[i] = v2, p.record_at[i] = record_at, p.bounces[i] = 0;
+}
+State free_lanes::state_in(const Particles& p, int i) {
+  const Rays& r = p.rays;
+  State s;
+  s.x = Vec2(r.x[i], r.y[i]), s.v = Vec2(r.vx[i], r.vy[i]), s.t = r.t[i];
+  return s;
+}
+Clock free_lanes::clock_in(const Particles& p, int i) {
+  Clock clock;
+  clock.hi = p.clock_hi[i], clock.lo = p.clock_lo[i];
+  return clock;
+}
+void free_lanes::park(Particles& p, int i, int j) {
+  load(p, i, state_in(p, j), clock_in(p, j), p.v2[j], -never);
+}
+
 namespace {
 
 /// The hit's point and normal, as each table's `collision` makes them.
@@ -128,8 +154,9 @@ std::pair<Vec3, Vec3> contact_of(const Table3& table, const FlightHit<FreeFlight
 }  // namespace
 
 template <int Dim>
-BasicFreeLockstepTable<Dim>::BasicFreeLockstepTable(const TableT& table, const Flight& flight, Kernel kernel)
-    : table_(&table), flight_(&flight), kernel_(kernel), walks_together_(walks_together(table)),
+BasicFreeLockstepTable<Dim>::BasicFreeLockstepTable(const TableT& table, const Flight& flight, Kernel kernel,
+                                                    Propagator propagator)
+    : table_(&table), flight_(&flight), kernel_(kernel), propagator_(propagator), walks_together_(walks_together(table)),
       usable_(walks_together_ || (kernel && lanes_search(table))) {
   if (usable_ && !walks_together_) walls_ = free_lanes::walls_of(table);
 }
@@ -142,29 +169,31 @@ void BasicFreeLockstepTable<Dim>::collisions(const typename Flight::State* const
   const auto in = free_lanes::rays_of(states, t_end, n);
   free_lanes::Hits out;
   kernel_(walls_, in, out);
-  for (int i = 0; i < n; ++i) {
-    const auto& s = *states[i];
-    auto& hit = hits[i];
-    if (out.handed_back[i]) {
-      hit = collision(*table_, *flight_, s, t_end[i]);
-      continue;
-    }
-    // As `collision` makes the hit (the kernel made it where `made`).
-    hit.t = out.t[i];
-    hit.wall = out.kind[i] < 0 ? WallId{} : WallId{int(out.kind[i]), int(out.index[i])};
-    hit.midpoint_inside = false;
-    if (!hit.found()) continue;
-    if constexpr (Dim == 2) {
-      if (out.made[i]) {
-        hit.state = s;
-        hit.state.x = Vec2(out.x[i], out.y[i]), hit.state.t = hit.t;
-        hit.point = Vec2(out.point_x[i], out.point_y[i]), hit.normal = Vec2(out.normal_x[i], out.normal_y[i]);
-        continue;
-      }
-    }
-    hit.state = flight_->advance(s, hit.t);
-    std::tie(hit.point, hit.normal) = contact_of(*table_, hit);
+  for (int i = 0; i < n; ++i) hit_of(out, i, *states[i], t_end[i], hits[i]);
+}
+
+template <int Dim>
+void BasicFreeLockstepTable<Dim>::hit_of(const free_lanes::Hits& out, int i, const typename Flight::State& s,
+                                         double t_end, FlightHit<Flight>& hit) const {
+  if (out.handed_back[i]) {
+    hit = collision(*table_, *flight_, s, t_end);
+    return;
   }
+  // As `collision` makes the hit (the kernel made it where `made`).
+  hit.t = out.t[i];
+  hit.wall = out.kind[i] < 0 ? WallId{} : WallId{int(out.kind[i]), int(out.index[i])};
+  hit.midpoint_inside = false;
+  if (!hit.found()) return;
+  if constexpr (Dim == 2) {
+    if (out.made[i]) {
+      hit.state = s;
+      hit.state.x = Vec2(out.x[i], out.y[i]), hit.state.t = hit.t;
+      hit.point = Vec2(out.point_x[i], out.point_y[i]), hit.normal = Vec2(out.normal_x[i], out.normal_y[i]);
+      return;
+    }
+  }
+  hit.state = flight_->advance(s, hit.t);
+  std::tie(hit.point, hit.normal) = contact_of(*table_, hit);
 }
 
 template class BasicFreeLockstepTable<2>;

@@ -225,16 +225,7 @@ typename Flight::State state_at(const Flight& flight, const typename Flight::Sta
 
 namespace detail {
 
-/// n·n − 1 for a unit vector to rounding, as (n₀² − 1) + n₁² (+ n₂²): its roundings are those of
-/// generic numbers, unbiased, never that of a sum near 1 (n·n rounded near 1 resolves only ε/2
-/// below 1 and ε above, a biased rounding).  No error-free product: the squares' own rounding
-/// errors, ε/4 on average and of zero mean, make it noise of η's size, not a drift.
-template <class Real, int D>
-Real unit_excess(const VecN<Real, D>& n) {
-  Real excess = n[0] * n[0] - 1;
-  for (int i = 1; i < D; ++i) excess += n[i] * n[i];
-  return excess;
-}
+#include "billiards/dynamics/bounce-inl.hpp"
 
 }  // namespace detail
 
@@ -242,7 +233,9 @@ Real unit_excess(const VecN<Real, D>& n) {
 /// with k = 2((v − u)·n) (u the wall's velocity).
 template <class Real, int D>
 inline VecN<Real, D> reflect(const VecN<Real, D>& v, const VecN<Real, D>& n, const Real& k) {
-  return (v - k * n) + (k * detail::unit_excess(n)) * n;
+  VecN<Real, D> reflected = v;
+  detail::reflect_in_place<ScalarLanes<Real>, D>(reflected, n, k);
+  return reflected;
 }
 /// Specular reflection off the normal n, v' = v − 2(v·n)n/(n·n).  A computed normal is a unit
 /// vector to rounding only, n·n = 1 + η, and the plain v − 2(v·n)n scales the normal component
@@ -256,9 +249,7 @@ inline VecN<Real, D> reflect(const VecN<Real, D>& v, const VecN<Real, D>& n) {
   return reflect(v, n, Real(2 * v.dot(n)));
 }
 
-/// The band in which restore_speed leaves |v|² alone: relative to v2, 4 ε.
-template <class Real>
-inline const Real speed_band = 4 * std::numeric_limits<Real>::epsilon();
+using detail::speed_band;
 
 /// Rescales v to the speed² `v2` once rounding has moved |v|² out of the speed band about it.
 /// Flights that conserve energy call this after every bounce, against the value at the start,
@@ -270,10 +261,7 @@ inline const Real speed_band = 4 * std::numeric_limits<Real>::epsilon();
 /// one bounce in tens is rescaled).
 template <class Real, int D>
 inline void restore_speed(Eigen::Matrix<Real, D, 1>& v, const Real& v2) {
-  using std::abs;
-  using std::sqrt;
-  const Real now = v.squaredNorm();
-  if (abs(now - v2) > speed_band<Real> * v2) v *= Real(sqrt(v2 / now));
+  detail::restore_speed_in_place<ScalarLanes<Real>, D>(v, v2, Real(v.squaredNorm()), speed_band<Real>);
 }
 
 /// Moves the particle to the collision and reflects it there.  `HitT` is BasicHit or the

@@ -1,7 +1,8 @@
 // The drive's phase in double, written once over a number type: the exact sums and products of
-// two doubles, the phase's reduction to [0, 2π) in two doubles, its sine and cosine, and their
-// shift to a nearby phase.  Included into a namespace by error_free.hpp (the scalar flights,
-// with ScalarLanes) and by lockstep_kernel.cpp (each SIMD target's lanes), after
+// two doubles, the run's clock in two doubles, the phase's reduction to [0, 2π) in two doubles,
+// its sine and cosine, and their shift to a nearby phase.  Included into a namespace by
+// error_free.hpp (the scalar flights, with ScalarLanes) and by lockstep_kernel.cpp and
+// free_lanes_kernel.cpp (each SIMD target's lanes), after
 // phase_constants.hpp.  A `Lanes` traits class `L` supplies, besides arithmetic on L::Num:
 //   L::splat(x), L::fraction(a, b) (a/b rounded once in Num), L::select(m, a, b), L::none(m),
 //   L::either(m, n), L::abs, L::neg, L::trunc(x) (toward zero) and L::to_quadrant(k, s, c).
@@ -33,6 +34,20 @@ template <class Num>
 [[gnu::always_inline]] inline Unevaluated<Num> fast_two_sum(const Num& a, const Num& b) {
   const Num s = a + b;
   return {s, b - (s - a)};
+}
+
+/// The run's clock hi + lo (state.hpp's Clock) after a flight of dt: to the 106 bits of hi + lo.
+template <class Num>
+[[gnu::always_inline]] inline Unevaluated<Num> clock_after_flight(const Unevaluated<Num>& clock, const Num& dt) {
+  const auto [s, e] = two_sum(clock.hi, dt);
+  return fast_two_sum(s, Num(e + clock.lo));
+}
+
+/// T − (hi + lo) rounded once (to within an ulp): the time from the clock to T.
+template <class L, class Num = typename L::Num>
+[[gnu::always_inline]] inline Num clock_until(const Unevaluated<Num>& clock, const Num& T) {
+  const auto [s, e] = two_sum(T, L::neg(clock.hi));
+  return s + (e - clock.lo);
 }
 
 /// a·b = hi + lo exactly for |a|, |b| < 2⁹⁹⁵ (Dekker's product on Veltkamp's halves).  Not a

@@ -171,6 +171,17 @@ class Trajectory {
     return true;
   }
   const ParticleLog& log() const { return log_; }
+  /// The speed² the bounces restore, and the absolute time of the next record (not `done`).
+  double speed2() const { return v2_; }
+  double next_record_time() const { return opt_->record_times[k_]; }
+  /// Takes up the particle where bounces made elsewhere (free_lanes::Propagator, with
+  /// advance_to's arithmetic) left it: the state after the last, its clock, their number (all
+  /// of nonzero flights, before the next record time).
+  void resume(const typename Flight::State& s, const Clock& clock, std::uint64_t bounces) {
+    s_ = s, clock_ = clock;
+    log_.collisions += bounces;
+    if (bounces > 0) zero_flights_ = 0;
+  }
 
  private:
   bool next_collision() { return !done() && advance_to(collision(*table_, *flight_, s_, horizon())); }
@@ -302,6 +313,47 @@ using LockstepTableOf = std::conditional_t<
                        std::conditional_t<std::is_same_v<Flight, MagneticFlight>, MagneticLockstepTable,
                                           std::conditional_t<std::is_same_v<Flight, FreeFlight3>, FreeLockstepTable3, void>>>>;
 
+/// run_in_lockstep's particles kept in the lanes of a table that `propagates`: `runs[i]` the
+/// particle of lane i (none: the lane parked), `finish(i)` keeps its log and puts the next
+/// particle there.  A particle leaves its lane only for what the propagator does not do
+/// (records, elliptic arcs, zero flights, no wall ahead, hits handed back): the scalar code resumes it, takes its
+/// hit (Trajectory::advance_to) and loads it back.
+template <class LockstepT, class Run, class Finish>
+void propagate_in_lanes(const LockstepT& lockstep_table, std::optional<Run>* runs, Finish& finish, StopCheck& stop,
+                        const FirstError& error) {
+  constexpr int lanes = LockstepT::lanes;
+  free_lanes::Particles p;
+  free_lanes::Hits hits;
+  // Lane i given its particle (the next ones while a particle is done at its start).
+  auto load = [&](int i) {
+    while (runs[i] && runs[i]->done()) finish(i);
+    if (runs[i]) free_lanes::load(p, i, runs[i]->state(), runs[i]->clock(), runs[i]->speed2(), runs[i]->next_record_time());
+  };
+  // A lane without a particle parked: a copy of a lane with one (there is one), never bounced.
+  auto park = [&](int i) {
+    int j = 0;
+    while (!runs[j]) ++j;
+    free_lanes::park(p, i, j);
+  };
+  int active = 0;
+  for (int i = 0; i < lanes; ++i) load(i), active += runs[i].has_value();
+  for (int i = 0; i < lanes && active > 0; ++i)
+    if (!runs[i]) park(i);
+  FlightHit<typename LockstepT::Flight> hit;
+  while (active > 0 && !stop.stopped() && !error.failed()) {
+    const std::uint32_t left = lockstep_table.propagate(p, hits);
+    for (int i = 0; i < lanes; ++i) {
+      if (!(left >> i & 1) || !runs[i]) continue;
+      Run& run = *runs[i];
+      run.resume(free_lanes::state_in(p, i), free_lanes::clock_in(p, i), std::uint64_t(p.bounces[i]));
+      lockstep_table.hit_of(hits, i, run.state(), run.horizon(), hit);
+      if (!run.advance_to(hit)) finish(i);
+      load(i);
+      if (!runs[i] && --active > 0) park(i);
+    }
+  }
+}
+
 /// Runs particles [first, last) of an ensemble in a table that a lock-step table can search
 /// (LockstepTableOf the flight): each thread keeps
 /// `lanes` particles in flight and finds their collisions together, taking the next particle as
@@ -346,6 +398,12 @@ void run_in_lockstep(const LockstepT& lockstep_table, const TableT& table, const
           if (!runs[i] || stop.stopped() || error.failed()) return {};
           return {&runs[i]->state(), runs[i]->horizon()};
         });
+    // Free flights in 2-D with nothing checked at every flight: the particles kept in the
+    // lanes across their bounces, the lanes left to the scalar code here when a particle's hit
+    // is not one the propagator bounces.
+    if constexpr (requires(free_lanes::Particles& p, free_lanes::Hits& h) { lockstep_table.propagate(p, h); })
+      if (lockstep_table.propagates() && !opt.verify_every_flight)
+        return propagate_in_lanes(lockstep_table, runs, finish, stop, error);
     // Else a batch of every lane's flight at a time.
     const typename Flight::State* states[lanes];
     double horizons[lanes];

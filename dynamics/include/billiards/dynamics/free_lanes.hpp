@@ -83,11 +83,29 @@ struct alignas(64) Hits {
   double x[lanes], y[lanes], point_x[lanes], point_y[lanes], normal_x[lanes], normal_y[lanes];
 };
 
+/// The particles of a free 2-D ensemble kept in the lanes across their collisions
+/// (run_in_lockstep), lane by lane: the flight (its t 0, its horizon never), the run's clock at
+/// its start (state.hpp's Clock: hi + lo), the speed² the bounces restore, the next record
+/// time (absolute; −∞: a lane without a particle) and the bounces made in the lanes since the
+/// particle was last loaded.
+struct alignas(64) Particles {
+  Rays rays;
+  double clock_hi[lanes], clock_lo[lanes], v2[lanes], record_at[lanes];
+  std::int64_t bounces[lanes];
+};
+
 /// The kernels, as compiled for one SIMD target: 2-D and 3-D.
 using Kernel = void (*)(const Walls& walls, const Rays& rays, Hits& hits);
 using Kernel3 = void (*)(const Walls3& walls, const Rays3& rays, Hits& hits);
+/// The first hits of the particles' flights and, in each lane whose hit is a segment's or an
+/// arc's, of a flight of nonzero time ending before the next record time, the particle's
+/// bounce there as Trajectory::advance_to makes it (position, reflection, restored speed,
+/// clock, one bounce more).  Returns the lanes left to the scalar code (bit i: lane i), whose
+/// particles are as they were and whose hits are in `hits`.
+using Propagator = std::uint32_t (*)(const Walls& walls, Particles& particles, Hits& hits);
 /// The kernels compiled for a SIMD target (simd.hpp); nullptr for simd::scalar.
 Kernel kernel_of(std::int64_t target);
 Kernel3 kernel3_of(std::int64_t target);
+Propagator propagator_of(std::int64_t target);
 
 }  // namespace billiards::dynamics::free_lanes

@@ -14,6 +14,9 @@
 #include "billiards/dynamics/simd.hpp"
 #include "billiards/dynamics/table3.hpp"
 
+#include <cstddef>
+#include <cstdint>
+
 namespace billiards::dynamics {
 
 namespace free_lanes {
@@ -26,6 +29,7 @@ struct Of<2> {
   using Walls = free_lanes::Walls;
   using Rays = free_lanes::Rays;
   using Kernel = free_lanes::Kernel;
+  using Propagator = free_lanes::Propagator;
 };
 template <>
 struct Of<3> {
@@ -33,6 +37,7 @@ struct Of<3> {
   using Walls = Walls3;
   using Rays = Rays3;
   using Kernel = Kernel3;
+  using Propagator = std::nullptr_t;  // (none: the particles leave the lanes at every hit)
 };
 /// The kernel that ensembles use: that of simd::chosen_target().
 template <int Dim>
@@ -41,6 +46,13 @@ template <>
 Kernel chosen_kernel<2>();
 template <>
 Kernel3 chosen_kernel<3>();
+/// The propagator that ensembles use: that of simd::chosen_target() (in 2-D).
+template <int Dim>
+typename Of<Dim>::Propagator chosen_propagator();
+template <>
+Propagator chosen_propagator<2>();
+template <>
+inline std::nullptr_t chosen_propagator<3>() { return nullptr; }
 /// Are the segments and arcs few enough for the kernels' arrays (max_walls of each kind; the
 /// magnetic kernel reads these two)?
 bool fits(const Table& table);
@@ -52,6 +64,14 @@ Walls3 walls_of(const Table3& table);
 /// The flights as the kernels read them, lane by lane (lanes beyond n: copies of the first).
 Rays rays_of(const State* const* states, const double* t_end, int n);
 Rays3 rays_of(const State3* const* states, const double* t_end, int n);
+/// Lane i of the particles kept in the lanes: loaded with a particle's flight from s (its t
+/// 0), its clock, speed² and next record time, no bounce made yet; a particle's state and
+/// clock read back; and a lane without a particle (a copy of lane j's flight, which never
+/// bounces: its record time −∞).
+void load(Particles& p, int i, const State& s, const Clock& clock, double v2, double record_at);
+State state_in(const Particles& p, int i);
+Clock clock_in(const Particles& p, int i);
+void park(Particles& p, int i, int j);
 }  // namespace free_lanes
 
 /// A table whose straight flights can be searched in lock step: in 2-D segments, arcs and
@@ -65,13 +85,27 @@ class BasicFreeLockstepTable {
   using TableT = typename free_lanes::Of<Dim>::Table;
   using Flight = BasicFreeFlight<double, Dim>;
   using Kernel = typename free_lanes::Of<Dim>::Kernel;
+  using Propagator = typename free_lanes::Of<Dim>::Propagator;
   static constexpr int lanes = free_lanes::lanes;
   /// Not `usable` when the table is not one of those, or the kernel is none (a mesh needs none).
-  BasicFreeLockstepTable(const TableT& table, const Flight& flight, Kernel kernel = free_lanes::chosen_kernel<Dim>());
+  BasicFreeLockstepTable(const TableT& table, const Flight& flight, Kernel kernel = free_lanes::chosen_kernel<Dim>(),
+                         Propagator propagator = free_lanes::chosen_propagator<Dim>());
   bool usable() const { return usable_; }
   /// hits[i] = collision(table, flight, *states[i], t_end[i]) for 0 < n ≤ lanes: the same hits,
   /// bit for bit (where none is found, the hit's time and wall only).
   void collisions(const typename Flight::State* const* states, const double* t_end, int n, FlightHit<Flight>* hits) const;
+  /// Can the particles stay in the lanes across their bounces (`propagate`: a 2-D table with a
+  /// propagator)?
+  bool propagates() const { return usable_ && propagator_; }
+  /// The particles' next hits and, in the lanes where it can, their bounces there
+  /// (free_lanes::Propagator); returns the lanes left to the caller, whose hits `hit_of` gives.
+  std::uint32_t propagate(free_lanes::Particles& particles, free_lanes::Hits& hits) const requires(Dim == 2) {
+    return propagator_(walls_, particles, hits);
+  }
+  /// The hit of lane i of the kernel's hits `out`, for the flight from s up to t_end, as
+  /// `collision` makes it (`collision` itself where the lane was handed back).
+  void hit_of(const free_lanes::Hits& out, int i, const typename Flight::State& s, double t_end,
+              FlightHit<Flight>& hit) const;
   /// Are the flights searched as a stream (a mesh's BVH walks, Table3::collision_stream: a lane
   /// given its next flight as soon as its hit is found) rather than a batch at a time?
   bool streams() const requires(Dim == 3) { return walks_together_; }
@@ -84,6 +118,7 @@ class BasicFreeLockstepTable {
   const TableT* table_;
   const Flight* flight_;
   Kernel kernel_;
+  Propagator propagator_;
   typename free_lanes::Of<Dim>::Walls walls_;
   bool walks_together_;
   bool usable_;

@@ -45,8 +45,7 @@ struct BasicClock<double> {
   explicit BasicClock(double start) : hi(start) {}
   /// Adds a flight's time, exactly to the 106 bits of hi + lo.
   void add(double dt) {
-    const auto [s, e] = detail::two_sum(hi, dt);
-    const auto sum = detail::fast_two_sum(s, e + lo);
+    const auto sum = detail::clock_after_flight(detail::Unevaluated<double>{hi, lo}, dt);
     hi = sum.hi, lo = sum.lo;
   }
   /// hi + lo + τ and T − (hi + lo), each rounded once (to within an ulp); `never` stays never.
@@ -55,8 +54,7 @@ struct BasicClock<double> {
     return tau == never ? never : s + (e + lo);
   }
   double until(double T) const {
-    const auto [s, e] = detail::two_sum(T, -hi);
-    return T == never ? never : s + (e - lo);
+    return T == never ? never : detail::clock_until<detail::Doubles>(detail::Unevaluated<double>{hi, lo}, T);
   }
 };
 using Clock = BasicClock<double>;
