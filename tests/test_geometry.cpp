@@ -121,7 +121,7 @@ TEST_CASE("the triangle's area by Heron's formula") {
 }
 
 TEST_CASE("the containment test's classified cells answer as the crossing count does") {
-  // contains(p) answers from a cell no wall comes near; contains(p, tolerance) always counts
+  // contains(p) answers from a fine cell no wall comes near; contains(p, tolerance) always counts
   // crossings.  They must agree everywhere: at random points of the box and just beside walls
   // (points pushed off each wall by ±tolerance/2 and ±3 tolerances); and a segment that
   // certainly_contains certifies must be inside at every point.
@@ -131,7 +131,7 @@ TEST_CASE("the containment test's classified cells answer as the crossing count 
     const dynamics::Table table(shape.region);
     dynamics::ParticleRng rng(5, 0);
     const Vec2 lo = table.lo(), size = table.hi() - table.lo();
-    int disagreements = 0, classified = 0;
+    int disagreements = 0, classified = 0, fine = 0;
     auto check = [&](const Vec2& p) {
       disagreements += table.contains(p) != table.contains(p, table.tolerance());
     };
@@ -139,6 +139,7 @@ TEST_CASE("the containment test's classified cells answer as the crossing count 
       const Vec2 p = lo + Vec2(rng.uniform() * size.x(), rng.uniform() * size.y());
       check(p);
       classified += table.classes().of(p) != dynamics::Table::Classes::mixed;
+      fine += table.fine_classes().of(p) != dynamics::Table::Classes::mixed;
     }
     const auto ids = table.wall_ids();
     for (int i = 0; i < 20000; ++i) {
@@ -172,6 +173,8 @@ TEST_CASE("the containment test's classified cells answer as the crossing count 
     UNSCOPED_INFO(name << ": " << certified << " of 40000 short segments certified inside, " << across << " across cells");
     UNSCOPED_INFO(name << ": " << classified / 2000.0 << "% of the box in classified cells");
     CHECK(classified > 100000);  // (the lookup answers for most points)
+    UNSCOPED_INFO(name << ": " << fine / 2000.0 << "% of the box in classified fine cells");
+    CHECK(fine >= classified);  // (refined where no grid lists the walls: more, never fewer)
   }
 }
 

@@ -407,8 +407,8 @@ TEST_CASE("lock step: tables with a grid, or too many walls of a kind, or no ker
 }
 
 TEST_CASE("free lock step: particles kept in the lanes across their bounces equal simulate particle by particle, for every target's propagator") {
-  // Records sparse and dense (a particle leaves its lane for each); segments, arcs, elliptic
-  // arcs, a disk's hole, reflex and convex corners.
+  // Records sparse and dense (taken in the lanes, or by the scalar code in a cell a wall comes
+  // near); segments, arcs, elliptic arcs, a disk's hole, reflex and convex corners.
   std::vector<double> dense;
   for (double t = 0; t < 60; t += 0.37) dense.push_back(t);
   for (const char* shape : {"clover", "stadium", "sinai", "mushroom", "elliptic-stadium", "annulus", "l-room", "square"})
@@ -425,6 +425,32 @@ TEST_CASE("free lock step: particles kept in the lanes across their bounces equa
         check_ensemble_equals_simulate(lockstep, table, FreeFlight{}, opt, 40);
       }
     }
+}
+
+TEST_CASE("free lock step: a particle outside the table escapes at its record in the lanes as in simulate") {
+  // One particle in three starts in the Sinai table's disk: the lanes' cells there are not
+  // inside, so its record at t = 0 goes to the scalar code's point-in-region test, which
+  // catches it; the others record in the lanes, in cells inside or near a wall.
+  const auto table = table_of("sinai");
+  const auto microcanonical = dynamics::microcanonical(table, FreeFlight{}, 1.0, 2021);
+  const auto initial = [&](std::size_t i) {
+    if (i % 3 != 0) return microcanonical(i);
+    const double a = 0.7 * double(i);
+    State s;
+    s.x = 0.1 * dynamics::Vec2(std::cos(a), std::sin(a)), s.v = dynamics::Vec2(std::cos(2 * a), std::sin(2 * a)), s.t = 0;
+    return s;
+  };
+  dynamics::RunOptions opt;
+  for (double t = 0; t < 30; t += 0.37) opt.record_times.push_back(t);
+  std::vector<double> energies(opt.record_times.size());
+  CHECK(dynamics::simulate(table, FreeFlight{}, initial(0), opt, energies.data()).escaped);
+  CHECK_FALSE(dynamics::simulate(table, FreeFlight{}, initial(1), opt, energies.data()).escaped);
+  for (const auto& t : dynamics::simd::runnable_targets()) {
+    INFO(t.name << " kernel and propagator");
+    check_ensemble_equals_simulate(dynamics::FreeLockstepTable(table, FreeFlight{}, dynamics::free_lanes::kernel_of(t.bit),
+                                                               dynamics::free_lanes::propagator_of(t.bit)),
+                                   table, FreeFlight{}, opt, 40, initial);
+  }
 }
 
 TEST_CASE("lock step: free and magnetic ensembles equal simulate particle by particle, for every target and 1, 2 and 3 threads") {

@@ -35,12 +35,26 @@ free_lanes::Arc arc_of(const ArcWall& w) {
   return {a.cx, a.cy, a.r, a.r2, a.near, a.span_tol, a.from_x, a.from_y, a.to_x, a.to_y, a.focusing, a.full, a.half};
 }
 
+/// The table's fine classes' cells inside (none when they are more than Cells holds).
+free_lanes::Cells cells_of(const Table& table) {
+  const Table::Classes& classes = table.fine_classes();
+  free_lanes::Cells cells;
+  if (classes.cell.size() > 64 * std::size_t(free_lanes::Cells::max_words)) return cells;
+  cells.origin_x = classes.origin.x(), cells.origin_y = classes.origin.y();
+  cells.inverse_x = classes.inverse_cell.x(), cells.inverse_y = classes.inverse_cell.y();
+  cells.nx = classes.nx, cells.ny = classes.ny;
+  for (std::size_t i = 0; i < classes.cell.size(); ++i)
+    if (classes.cell[i] == Table::Classes::inside) cells.inside[i / 64] |= std::int64_t(std::uint64_t(1) << (i % 64));
+  return cells;
+}
+
 }  // namespace
 
 free_lanes::Walls free_lanes::walls_of(const Table& table) {
   const auto& segments = table.segments();
   const auto& arcs = table.arcs();
   Walls walls;
+  walls.cells = cells_of(table);
   auto& c = walls.contacts;
   walls.segment_count = int(segments.size());
   for (std::size_t i = 0; i < segments.size(); ++i) {
@@ -120,11 +134,13 @@ free_lanes::Rays3 free_lanes::rays_of(const State3* const* states, const double*
   return in;
 }
 
-void free_lanes::load(Particles& p, int i, const State& s, const Clock& clock, double v2, double record_at) {
+void free_lanes::load(Particles& p, int i, const State& s, const Clock& clock, double v2, const Records& records,
+                      std::int64_t record, double* energies) {
   Rays& r = p.rays;
   r.x[i] = s.x.x(), r.y[i] = s.x.y(), r.vx[i] = s.v.x(), r.vy[i] = s.v.y();
   r.t[i] = s.t, r.vv[i] = s.v.squaredNorm(), r.t_end[i] = never;
-  p.clock_hi[i] = clock.hi, p.clock_lo[i] = clock.lo, p.v2[i] = v2, p.record_at[i] = record_at, p.bounces[i] = 0;
+  p.clock_hi[i] = clock.hi, p.clock_lo[i] = clock.lo, p.v2[i] = v2;
+  p.record[i] = record, p.record_at[i] = records.times[record], p.energies[i] = energies, p.bounces[i] = 0;
 }
 State free_lanes::state_in(const Particles& p, int i) {
   const Rays& r = p.rays;
@@ -137,8 +153,8 @@ Clock free_lanes::clock_in(const Particles& p, int i) {
   clock.hi = p.clock_hi[i], clock.lo = p.clock_lo[i];
   return clock;
 }
-void free_lanes::park(Particles& p, int i, int j) {
-  load(p, i, state_in(p, j), clock_in(p, j), p.v2[j], -never);
+void free_lanes::park(Particles& p, int i, int j, const Records& records) {
+  load(p, i, state_in(p, j), clock_in(p, j), p.v2[j], records, records.count, nullptr);
 }
 
 namespace {

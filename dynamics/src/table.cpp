@@ -56,7 +56,7 @@ int BasicTable<Real>::Classes::of(const Vec2& p) const {
 template <class Real>
 bool BasicTable<Real>::contains(const V& p) const {
   if constexpr (std::is_floating_point_v<Real>) {
-    if (const int c = classes_.of(p.template cast<double>()); c != Classes::mixed) return c == Classes::inside;
+    if (const int c = fine_classes_.of(p.template cast<double>()); c != Classes::mixed) return c == Classes::inside;
   }
   return contains(p, tolerance_);
 }
@@ -90,15 +90,35 @@ void BasicTable<Real>::build_classes() {
   classes_.ny = std::max(1, int(std::ceil(size.y() / h)));
   classes_.origin = lo_;
   classes_.inverse_cell = Vec2(classes_.nx / size.x(), classes_.ny / size.y());
-  const Vec2 cell(size.x() / classes_.nx, size.y() / classes_.ny);
-  const double reach = cell.norm() / 2 + 2 * tolerance_;
+  classes_.cell_size = Vec2(size.x() / classes_.nx, size.y() / classes_.ny);
   classes_.cell.assign(std::size_t(classes_.nx) * classes_.ny, Classes::mixed);
   for (int j = 0; j < classes_.ny; ++j)
-    for (int i = 0; i < classes_.nx; ++i) {
-      const V centre = (lo_ + cell.cwiseProduct(Vec2(i + 0.5, j + 0.5))).template cast<Real>();
-      if (wall_distance(centre) > reach)
-        classes_.cell[std::size_t(j) * classes_.nx + i] = contains(centre, tolerance_) ? Classes::inside : Classes::outside;
+    for (int i = 0; i < classes_.nx; ++i) classes_.cell[std::size_t(j) * classes_.nx + i] = class_of_cell(classes_, i, j);
+  fine_classes_ = grid() ? classes_ : refined_classes(fine_refinement);
+}
+
+template <class Real>
+signed char BasicTable<Real>::class_of_cell(const Classes& classes, int i, int j) const {
+  const Vec2& cell = classes.cell_size;
+  const V centre = (classes.origin + cell.cwiseProduct(Vec2(i + 0.5, j + 0.5))).template cast<Real>();
+  if (!(wall_distance(centre) > cell.norm() / 2 + 2 * tolerance_)) return Classes::mixed;
+  return contains(centre, tolerance_) ? Classes::inside : Classes::outside;
+}
+
+template <class Real>
+typename BasicTable<Real>::Classes BasicTable<Real>::refined_classes(int factor) const {
+  Classes fine = classes_;
+  fine.nx *= factor, fine.ny *= factor;
+  const Vec2 size = hi_ - lo_;
+  fine.inverse_cell = Vec2(fine.nx / size.x(), fine.ny / size.y());
+  fine.cell_size = Vec2(size.x() / fine.nx, size.y() / fine.ny);
+  fine.cell.assign(std::size_t(fine.nx) * fine.ny, Classes::mixed);
+  for (int j = 0; j < fine.ny; ++j)
+    for (int i = 0; i < fine.nx; ++i) {
+      const signed char coarse = classes_.cell[std::size_t(j / factor) * classes_.nx + i / factor];
+      fine.cell[std::size_t(j) * fine.nx + i] = coarse == Classes::mixed ? class_of_cell(fine, i, j) : coarse;
     }
+  return fine;
 }
 
 template <class Real>

@@ -171,14 +171,16 @@ class Trajectory {
     return true;
   }
   const ParticleLog& log() const { return log_; }
-  /// The speed² the bounces restore, and the absolute time of the next record (not `done`).
+  /// The speed² the bounces restore, the next record (an index into the record times) and the
+  /// particle's energies, one per record time.
   double speed2() const { return v2_; }
-  double next_record_time() const { return opt_->record_times[k_]; }
-  /// Takes up the particle where bounces made elsewhere (free_lanes::Propagator, with
-  /// advance_to's arithmetic) left it: the state after the last, its clock, their number (all
-  /// of nonzero flights, before the next record time).
-  void resume(const typename Flight::State& s, const Clock& clock, std::uint64_t bounces) {
-    s_ = s, clock_ = clock;
+  std::size_t next_record() const { return k_; }
+  double* energies() const { return energies_; }
+  /// Takes up the particle where bounces and records made elsewhere (free_lanes::Propagator,
+  /// with advance_to's arithmetic) left it: the state after the last bounce, its clock, their
+  /// number (all of nonzero flights) and the next record.
+  void resume(const typename Flight::State& s, const Clock& clock, std::uint64_t bounces, std::size_t next_record) {
+    s_ = s, clock_ = clock, k_ = next_record;
     log_.collisions += bounces;
     if (bounces > 0) zero_flights_ = 0;
   }
@@ -316,24 +318,29 @@ using LockstepTableOf = std::conditional_t<
 /// run_in_lockstep's particles kept in the lanes of a table that `propagates`: `runs[i]` the
 /// particle of lane i (none: the lane parked), `finish(i)` keeps its log and puts the next
 /// particle there.  A particle leaves its lane only for what the propagator does not do
-/// (records, elliptic arcs, zero flights, no wall ahead, hits handed back): the scalar code resumes it, takes its
-/// hit (Trajectory::advance_to) and loads it back.
+/// (elliptic arcs, zero flights, no wall ahead, hits handed back, a record near a wall, the
+/// end): the scalar code resumes it, takes its hit (Trajectory::advance_to) and loads it back.
 template <class LockstepT, class Run, class Finish>
-void propagate_in_lanes(const LockstepT& lockstep_table, std::optional<Run>* runs, Finish& finish, StopCheck& stop,
-                        const FirstError& error) {
+void propagate_in_lanes(const LockstepT& lockstep_table, const RunOptions& opt, std::optional<Run>* runs,
+                        Finish& finish, StopCheck& stop, const FirstError& error) {
   constexpr int lanes = LockstepT::lanes;
+  std::vector<double> times = opt.record_times;
+  times.push_back(never);
+  const free_lanes::Records records{times.data(), std::int64_t(opt.record_times.size()), 0.5 * opt.mass};
   free_lanes::Particles p;
   free_lanes::Hits hits;
   // Lane i given its particle (the next ones while a particle is done at its start).
   auto load = [&](int i) {
     while (runs[i] && runs[i]->done()) finish(i);
-    if (runs[i]) free_lanes::load(p, i, runs[i]->state(), runs[i]->clock(), runs[i]->speed2(), runs[i]->next_record_time());
+    if (const Run* run = runs[i] ? &*runs[i] : nullptr)
+      free_lanes::load(p, i, run->state(), run->clock(), run->speed2(), records, std::int64_t(run->next_record()),
+                       run->energies());
   };
   // A lane without a particle parked: a copy of a lane with one (there is one), never bounced.
   auto park = [&](int i) {
     int j = 0;
     while (!runs[j]) ++j;
-    free_lanes::park(p, i, j);
+    free_lanes::park(p, i, j, records);
   };
   int active = 0;
   for (int i = 0; i < lanes; ++i) load(i), active += runs[i].has_value();
@@ -341,11 +348,12 @@ void propagate_in_lanes(const LockstepT& lockstep_table, std::optional<Run>* run
     if (!runs[i]) park(i);
   FlightHit<typename LockstepT::Flight> hit;
   while (active > 0 && !stop.stopped() && !error.failed()) {
-    const std::uint32_t left = lockstep_table.propagate(p, hits);
+    const std::uint32_t left = lockstep_table.propagate(records, p, hits);
     for (int i = 0; i < lanes; ++i) {
       if (!(left >> i & 1) || !runs[i]) continue;
       Run& run = *runs[i];
-      run.resume(free_lanes::state_in(p, i), free_lanes::clock_in(p, i), std::uint64_t(p.bounces[i]));
+      run.resume(free_lanes::state_in(p, i), free_lanes::clock_in(p, i), std::uint64_t(p.bounces[i]),
+                 std::size_t(p.record[i]));
       lockstep_table.hit_of(hits, i, run.state(), run.horizon(), hit);
       if (!run.advance_to(hit)) finish(i);
       load(i);
@@ -401,9 +409,9 @@ void run_in_lockstep(const LockstepT& lockstep_table, const TableT& table, const
     // Free flights in 2-D with nothing checked at every flight: the particles kept in the
     // lanes across their bounces, the lanes left to the scalar code here when a particle's hit
     // is not one the propagator bounces.
-    if constexpr (requires(free_lanes::Particles& p, free_lanes::Hits& h) { lockstep_table.propagate(p, h); })
+    if constexpr (requires(free_lanes::Particles& p, free_lanes::Hits& h) { lockstep_table.propagate({}, p, h); })
       if (lockstep_table.propagates() && !opt.verify_every_flight)
-        return propagate_in_lanes(lockstep_table, runs, finish, stop, error);
+        return propagate_in_lanes(lockstep_table, opt, runs, finish, stop, error);
     // Else a batch of every lane's flight at a time.
     const typename Flight::State* states[lanes];
     double horizons[lanes];

@@ -35,13 +35,23 @@ struct Ellipse {
   double cx, cy, l00, l01, l10, l11;
   Arc unit;
 };
-/// The segments, arcs and elliptic arcs of a table.
+/// The cells that lie wholly inside of a table's fine classes (table.hpp's
+/// BasicTable::fine_classes), as bits (bit j of inside[w]: cell 64 w + j): a point in one is
+/// inside at a lookup, as Table::contains answers there.  None (nx = ny = 0) when the grid
+/// has more cells.
+struct Cells {
+  static constexpr int max_words = 1060;  // (256 × 256 cells, or 260 where a side rounds up)
+  double origin_x = 0, origin_y = 0, inverse_x = 0, inverse_y = 0, nx = 0, ny = 0;
+  std::int64_t inside[max_words] = {};
+};
+/// The segments, arcs and elliptic arcs of a table, and its cells inside.
 struct Walls {
   Segment segments[max_walls];
   Arc arcs[max_walls];
   Ellipse ellipses[max_walls];
   int segment_count = 0, arc_count = 0, ellipse_count = 0;
   ContactColumns contacts{};
+  Cells cells{};
 };
 
 /// A face of a convex polyhedron (PlaneWall's fields).
@@ -86,23 +96,35 @@ struct alignas(64) Hits {
 /// The particles of a free 2-D ensemble kept in the lanes across their collisions
 /// (run_in_lockstep), lane by lane: the flight (its t 0, its horizon never), the run's clock at
 /// its start (state.hpp's Clock: hi + lo), the speed² the bounces restore, the next record
-/// time (absolute; −∞: a lane without a particle) and the bounces made in the lanes since the
-/// particle was last loaded.
+/// (its index into Records::times, count: none left or a lane without a particle, and its
+/// time), the particle's energies (one per record time) and the bounces made in the lanes since
+/// the particle was last loaded.
 struct alignas(64) Particles {
   Rays rays;
   double clock_hi[lanes], clock_lo[lanes], v2[lanes], record_at[lanes];
-  std::int64_t bounces[lanes];
+  std::int64_t record[lanes], bounces[lanes];
+  double* energies[lanes];
+};
+/// The record times of a run (RunOptions::record_times and +∞ after them: count + 1 entries)
+/// and ½m, by which the energy ½m|v|² is recorded.
+struct Records {
+  const double* times;
+  std::int64_t count;
+  double half_mass;
 };
 
 /// The kernels, as compiled for one SIMD target: 2-D and 3-D.
 using Kernel = void (*)(const Walls& walls, const Rays& rays, Hits& hits);
 using Kernel3 = void (*)(const Walls3& walls, const Rays3& rays, Hits& hits);
 /// The first hits of the particles' flights and, in each lane whose hit is a segment's or an
-/// arc's, of a flight of nonzero time ending before the next record time, the particle's
-/// bounce there as Trajectory::advance_to makes it (position, reflection, restored speed,
-/// clock, one bounce more).  Returns the lanes left to the scalar code (bit i: lane i), whose
-/// particles are as they were and whose hits are in `hits`.
-using Propagator = std::uint32_t (*)(const Walls& walls, Particles& particles, Hits& hits);
+/// arc's, of a flight of nonzero time, the particle's records and bounce as
+/// Trajectory::advance_to makes them: the energy at each record time the flight reaches whose
+/// position is in a cell inside (`Cells`), then the position, reflection, restored speed,
+/// clock, one bounce more.  Returns the lanes left to the scalar code (bit i: lane i), whose
+/// particles are at the start of their flights, with the records taken so far, and whose hits
+/// are in `hits`: those the propagator does not bounce, those past their last record time and
+/// those that reach a record time in a cell a wall comes near.
+using Propagator = std::uint32_t (*)(const Walls& walls, const Records& records, Particles& particles, Hits& hits);
 /// The kernels compiled for a SIMD target (simd.hpp); nullptr for simd::scalar.
 Kernel kernel_of(std::int64_t target);
 Kernel3 kernel3_of(std::int64_t target);

@@ -65,13 +65,14 @@ Walls3 walls_of(const Table3& table);
 Rays rays_of(const State* const* states, const double* t_end, int n);
 Rays3 rays_of(const State3* const* states, const double* t_end, int n);
 /// Lane i of the particles kept in the lanes: loaded with a particle's flight from s (its t
-/// 0), its clock, speed² and next record time, no bounce made yet; a particle's state and
-/// clock read back; and a lane without a particle (a copy of lane j's flight, which never
-/// bounces: its record time −∞).
-void load(Particles& p, int i, const State& s, const Clock& clock, double v2, double record_at);
+/// 0), its clock, speed², next record (< records.count) and energies, no bounce made yet; a
+/// particle's state and clock read back; and a lane without a particle (a copy of lane j's
+/// flight, which never bounces: no record left).
+void load(Particles& p, int i, const State& s, const Clock& clock, double v2, const Records& records, std::int64_t record,
+          double* energies);
 State state_in(const Particles& p, int i);
 Clock clock_in(const Particles& p, int i);
-void park(Particles& p, int i, int j);
+void park(Particles& p, int i, int j, const Records& records);
 }  // namespace free_lanes
 
 /// A table whose straight flights can be searched in lock step: in 2-D segments, arcs and
@@ -99,8 +100,9 @@ class BasicFreeLockstepTable {
   bool propagates() const { return usable_ && propagator_; }
   /// The particles' next hits and, in the lanes where it can, their bounces there
   /// (free_lanes::Propagator); returns the lanes left to the caller, whose hits `hit_of` gives.
-  std::uint32_t propagate(free_lanes::Particles& particles, free_lanes::Hits& hits) const requires(Dim == 2) {
-    return propagator_(walls_, particles, hits);
+  std::uint32_t propagate(const free_lanes::Records& records, free_lanes::Particles& particles,
+                          free_lanes::Hits& hits) const requires(Dim == 2) {
+    return propagator_(walls_, records, particles, hits);
   }
   /// The hit of lane i of the kernel's hits `out`, for the flight from s up to t_end, as
   /// `collision` makes it (`collision` itself where the lane was handed back).
