@@ -184,7 +184,7 @@ Truth certainly_inside(const Cells& cells, Num x, Num y) {
 }
 
 /// The records of the flights s from lane `first` that reach their next record times by their
-/// hits at t_hit, in the lanes `flying`: at each, the energy ½m|v|² (Trajectory::record's, as
+/// hits at t_hit, in the lanes `flying` (`due` of them now, at t on their clocks): at each, the energy ½m|v|² (Trajectory::record's, as
 /// energy_of sums it) where the position there (FreeFlight::advance's) is `certainly_inside`,
 /// and the next record time taken up.  Returns the lanes still flying, all of whose next
 /// record times lie beyond their hits: not those that reached a record time outside the cells
@@ -197,11 +197,10 @@ Truth certainly_inside(const Cells& cells, Num x, Num y) {
 /// still flying every due record is taken), and its energies are stored lane by lane, a lane
 /// not taken writing to a sink.
 [[gnu::noinline]] Truth record(const Walls& walls, const Records& records, Particles& p, int first, const RayLanes<Num>& s,
-                               Num t_hit, const Unevaluated<Num>& clock, Truth flying) {
+                               Num t_hit, const Unevaluated<Num>& clock, Truth flying, Num t, Truth due) {
   const D d;
   const DI di;
-  Num at = hn::Load(d, p.record_at + first), t = clock_until<Lanes>(clock, at);
-  Truth due = hn::And(flying, t <= t_hit);
+  Num at = hn::Load(d, p.record_at + first);
   const Index one = hn::Set(di, 1), count = hn::Set(di, records.count);
   Index k = hn::Load(di, p.record + first);
   Num next = hn::GatherIndex(d, records.times, hn::Min(k + one, count));
@@ -250,7 +249,8 @@ std::uint32_t propagate_of(const Walls& walls, const Records& records, Particles
   const Truth flying = hn::And(hn::And(c.made, best.t != hn::Zero(d)), recording);
   const Num t_record = clock_until<Lanes>(clock, hn::Load(d, p.record_at + first));
   const Truth due = hn::And(flying, t_record <= best.t);
-  const Truth stays = hn::AllFalse(d, due) ? flying : record(walls, records, p, first, s, best.t, clock, flying);
+  const Truth stays =
+      hn::AllFalse(d, due) ? flying : record(walls, records, p, first, s, best.t, clock, flying, t_record, due);
   const std::uint32_t left = lanes_of_mask(hn::Not(stays)) << first;
   if (hn::AllFalse(d, stays)) return left;
   Num v[2] = {s.vx, s.vy};
