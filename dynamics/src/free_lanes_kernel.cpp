@@ -20,6 +20,7 @@
 #include "billiards/dynamics/simd.hpp"
 
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>  // (straight_exit-inl.hpp: no code)
 
@@ -168,8 +169,22 @@ std::uint32_t lanes_of_mask(Truth m) {
   return bits & ((1u << L) - 1);
 }
 
-/// Are the points (x, y) in cells that lie wholly inside?  Classes::cell_of's arithmetic,
-/// then a bit of Cells::inside: where this holds, Table::contains answers true at its lookup.
+/// The traits of a double for drive_phase-inl.hpp, the clock of one lane at a time (Clock::until's
+/// arithmetic).
+struct OneDouble {
+  using Num = double;
+  static double neg(double a) { return -a; }
+};
+
+/// Is the point (x, y) in a cell that lies wholly inside?  Classes::cell_of's arithmetic, then
+/// a bit of Cells::inside: where this holds, Table::contains answers true at its lookup.
+bool certainly_inside(const Cells& cells, double x, double y) {
+  const double ux = (x - cells.origin_x) * cells.inverse_x, uy = (y - cells.origin_y) * cells.inverse_y;
+  if (!(ux >= 0 && uy >= 0 && ux < cells.nx && uy < cells.ny)) return false;  // (NaN too)
+  const std::int64_t cell = std::int64_t(uy) * std::int64_t(cells.nx) + std::int64_t(ux);
+  return cells.inside[cell >> 6] >> (cell & 63) & 1;
+}
+/// The same in each lane (the same arithmetic; the words gathered).
 Truth certainly_inside(const Cells& cells, Num x, Num y) {
   const D d;
   const DI di;
@@ -183,15 +198,50 @@ Truth certainly_inside(const Cells& cells, Num x, Num y) {
   return hn::And(on_grid, hn::RebindMask(d, hn::TestBit(word, hn::Set(di, 1) << hn::And(cell, hn::Set(di, 63)))));
 }
 
+/// `record`'s records of the lanes `due`, each lane's in a loop of its own: the lanes that
+/// leave.
+Truth record_lane_by_lane(const Walls& walls, const Records& records, Particles& p, int first, const RayLanes<Num>& s,
+                          Num t_hit, Truth due) {
+  const D d;
+  alignas(64) double x[L], y[L], vx[L], vy[L], t0[L], energy[L], end[L];
+  hn::Store(s.x, d, x), hn::Store(s.y, d, y), hn::Store(s.vx, d, vx), hn::Store(s.vy, d, vy), hn::Store(s.t, d, t0);
+  hn::Store(Lanes::splat(records.half_mass) * s.vv, d, energy), hn::Store(t_hit, d, end);
+  std::uint64_t left = 0;
+  for (std::uint32_t bits = lanes_of_mask(due); bits != 0; bits &= bits - 1) {
+    const int i = __builtin_ctz(bits), j = first + i;
+    const Unevaluated<double> clock{p.clock_hi[j], p.clock_lo[j]};
+    std::int64_t k = p.record[j];
+    for (double t; (t = clock_until<OneDouble>(clock, records.times[k])) <= end[i];) {
+      const double tau = t - t0[i];
+      if (!certainly_inside(walls.cells, x[i] + vx[i] * tau, y[i] + vy[i] * tau)) {
+        left |= std::uint64_t(1) << i;
+        break;
+      }
+      p.energies[j][k] = energy[i];
+      if (++k == records.count) {
+        left |= std::uint64_t(1) << i;
+        break;
+      }
+    }
+    p.record[j] = k, p.record_at[j] = records.times[k];
+  }
+  std::uint8_t mask[8];
+  std::memcpy(mask, &left, sizeof mask);
+  return hn::LoadMaskBits(d, mask);
+}
+
 /// The records of the flights s from lane `first` that reach their next record times by their
-/// hits at t_hit, in the lanes `flying` (`due` of them now, at t on their clocks): at each, the energy ½m|v|² (Trajectory::record's, as
-/// energy_of sums it) where the position there (FreeFlight::advance's) is `certainly_inside`,
-/// and the next record time taken up.  Returns the lanes still flying, all of whose next
-/// record times lie beyond their hits: not those that reached a record time outside the cells
-/// inside (for the scalar code's point-in-region test), nor those past their last.
+/// hits at t_hit, in the lanes `flying` (`due` of them now, at t on their clocks): at each,
+/// the energy ½m|v|² (Trajectory::record's, as energy_of sums it) where the position there
+/// (FreeFlight::advance's) is `certainly_inside`, and the next record time taken up.  Returns
+/// the lanes still flying, all of whose next record times lie beyond their hits: not those
+/// that reached a record time outside the cells inside (for the scalar code's point-in-region
+/// test), nor those past their last.
 ///
-/// A loop over the record times of all L flights at once ends with the flight that spans the
-/// most (about 8 for 8 flights of 2.6 each, a free clover recorded at every time unit), so its
+/// The records are taken in rounds of all lanes due while more than L/2 + 1 are (6 of 8, 4 of
+/// 4), then lane by lane: rounds alone end with the flight that spans the most (about 8 of 8
+/// flights of 2.6 each, the free clover recorded at every time unit), a lane at a time alone
+/// pays a mispredicted branch at the end of each flight's records (BENCHMARKS.md, records).  A
 /// round is kept short: the next round's times are gathered a round ahead, a round's record
 /// times follow from the lanes due alone (the lanes that fail the lookup leave, so in those
 /// still flying every due record is taken), and its energies are stored lane by lane, a lane
@@ -200,32 +250,35 @@ Truth certainly_inside(const Cells& cells, Num x, Num y) {
                                Num t_hit, const Unevaluated<Num>& clock, Truth flying, Num t, Truth due) {
   const D d;
   const DI di;
-  Num at = hn::Load(d, p.record_at + first);
-  const Index one = hn::Set(di, 1), count = hn::Set(di, records.count);
-  Index k = hn::Load(di, p.record + first);
-  Num next = hn::GatherIndex(d, records.times, hn::Min(k + one, count));
-  alignas(64) double energy[L];
-  alignas(64) std::int64_t index[L];
-  hn::Store(Lanes::splat(records.half_mass) * s.vv, d, energy);
-  double sink;
-  do {
-    // The next round's times, as if every lane due took its record (those that do not leave).
-    const Index after = k + hn::IfThenElseZero(hn::RebindMask(di, due), one);
-    at = hn::IfThenElse(due, next, at);
-    next = hn::GatherIndex(d, records.times, hn::Min(after + one, count));
-    const Num tau = t - s.t;
-    const Truth taken = hn::And(due, certainly_inside(walls.cells, s.x + s.vx * tau, s.y + s.vy * tau));
-    hn::Store(k, di, index);
-    const std::uint32_t bits = lanes_of_mask(taken);
-    for (int i = 0; i < L; ++i) *(bits >> i & 1 ? p.energies[first + i] + index[i] : &sink) = energy[i];
-    k = hn::IfThenElse(hn::RebindMask(di, taken), after, k);
-    flying = hn::AndNot(hn::Or(hn::AndNot(taken, due), hn::RebindMask(d, after == count)), flying);
-    t = clock_until<Lanes>(clock, at);
-    due = hn::And(flying, t <= t_hit);
-  } while (!hn::AllFalse(d, due));
-  hn::Store(k, di, p.record + first);
-  hn::Store(hn::GatherIndex(d, records.times, k), d, p.record_at + first);
-  return flying;
+  constexpr std::size_t few = L / 2 + 1;
+  if (hn::CountTrue(d, due) > few) {
+    const Index one = hn::Set(di, 1), count = hn::Set(di, records.count);
+    Index k = hn::Load(di, p.record + first);
+    Num at = hn::Load(d, p.record_at + first), next = hn::GatherIndex(d, records.times, hn::Min(k + one, count));
+    alignas(64) double energy[L];
+    alignas(64) std::int64_t index[L];
+    hn::Store(Lanes::splat(records.half_mass) * s.vv, d, energy);
+    double sink;
+    do {
+      // The next round's times, as if every lane due took its record (those that do not leave).
+      const Index after = k + hn::IfThenElseZero(hn::RebindMask(di, due), one);
+      at = hn::IfThenElse(due, next, at);
+      next = hn::GatherIndex(d, records.times, hn::Min(after + one, count));
+      const Num tau = t - s.t;
+      const Truth taken = hn::And(due, certainly_inside(walls.cells, s.x + s.vx * tau, s.y + s.vy * tau));
+      hn::Store(k, di, index);
+      const std::uint32_t bits = lanes_of_mask(taken);
+      for (int i = 0; i < L; ++i) *(bits >> i & 1 ? p.energies[first + i] + index[i] : &sink) = energy[i];
+      k = hn::IfThenElse(hn::RebindMask(di, taken), after, k);
+      flying = hn::AndNot(hn::Or(hn::AndNot(taken, due), hn::RebindMask(d, after == count)), flying);
+      t = clock_until<Lanes>(clock, at);
+      due = hn::And(flying, t <= t_hit);
+    } while (hn::CountTrue(d, due) > few);
+    hn::Store(k, di, p.record + first);
+    hn::Store(hn::GatherIndex(d, records.times, k), d, p.record_at + first);
+  }
+  if (hn::AllFalse(d, due)) return flying;
+  return hn::AndNot(record_lane_by_lane(walls, records, p, first, s, t_hit, due), flying);
 }
 
 /// `propagate` for the L particles from lane `first`: the lanes left to the scalar code.  The
